@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the Debian packages vqsa builds with, when some are missing.
+# Non-interactive, so it runs the same in CI and on a fresh machine.
+set -euo pipefail
+
+packages=(cmake g++ make libgtest-dev libeigen3-dev libtinygltf-dev nlohmann-json3-dev libboost-graph-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "Installing missing Debian packages: ${missing[*]}"
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

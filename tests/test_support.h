@@ -1,0 +1,33 @@
+// Canonical quadric surfaces with their parametrisations, shared by the tests.
+#pragma once
+
+#include "classify.h"
+#include "quadric.h"
+
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace vqsa::test {
+
+struct Surface {
+    std::string name;
+    QuadricType type;
+    Quadric quadric;  // canonical pose
+    std::function<Vec3(double, double)> point;
+    double u0, u1, v0, v1;  // a patch of the surface
+};
+
+// One surface of each type that has a parametrisation (all but the plane pairs).
+std::vector<Surface> surfaces();
+
+Eigen::Matrix3d random_rotation(std::mt19937& rng);
+
+// f(R⁻¹ (q - t)): the quadric moved by p → R p + t.
+Quadric moved(const Quadric& f, const Eigen::Matrix3d& rotation, const Vec3& translation);
+
+// Directory of ../shared/meshes.
+std::string shared_mesh(const std::string& name);
+
+}  // namespace vqsa::test

@@ -1,0 +1,362 @@
+#include "engine.h"
+
+#include "rng.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace vqsa {
+
+const char* phase_name(Phase phase) {
+    switch (phase) {
+        case Phase::initialize: return "initialize";
+        case Phase::lloyd: return "lloyd";
+        case Phase::insert: return "insert";
+        case Phase::split: return "split";
+        case Phase::merge: return "merge";
+        case Phase::teleport: return "teleport";
+        case Phase::done: return "done";
+    }
+    return "unknown";
+}
+
+const char* stop_reason_name(StopReason reason) {
+    switch (reason) {
+        case StopReason::none: return "none";
+        case StopReason::proxies: return "proxies";
+        case StopReason::tolerance: return "tolerance";
+        case StopReason::max_iterations: return "max_iterations";
+        case StopReason::cancelled: return "cancelled";
+        case StopReason::exhausted: return "exhausted";
+    }
+    return "unknown";
+}
+
+void validate(const EngineOptions& o) {
+    auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+    if (o.proxies < 0) fail("proxies must be at least 1 (or 0 for no count target), not " + std::to_string(o.proxies));
+    if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance))
+        fail("tolerance must be a non-negative number, not " + std::to_string(o.tolerance));
+    if (o.proxies == 0 && o.tolerance == 0) fail("give a proxy count, a tolerance, or both");
+    if (o.max_iterations < 1) fail("max-iterations must be at least 1");
+    if (o.stage_iterations < 1) fail("stage iterations must be at least 1");
+    if (!(o.convergence >= 0 && o.convergence < 1)) fail("convergence must be in [0, 1)");
+    if (o.teleports < 0) fail("teleports must be non-negative");
+    if (!(o.split_fraction > 0 && o.split_fraction < 0.5)) fail("split fraction must be in (0, 0.5)");
+}
+
+Engine::Engine(const Mesh& mesh, const EngineOptions& options)
+    : source_face_(mesh.source_face), input_face_count_(mesh.input_face_count), options_(options) {
+    validate(options_);
+    if (mesh.triangles.empty()) throw std::invalid_argument("the mesh has no faces");
+    if (options_.proxies > static_cast<int>(mesh.triangles.size()))
+        throw std::invalid_argument("proxies (" + std::to_string(options_.proxies) + ") exceeds the number of faces (" +
+                                    std::to_string(mesh.triangles.size()) + ")");
+    model_ = make_model(mesh);
+    initialize();
+}
+
+void Engine::initialize() {
+    const int n = model_.face_count();
+    // One seed per connected component, drawn reproducibly from `seed`.
+    std::vector<int> size(model_.component_count, 0), pick(model_.component_count);
+    for (int f = 0; f < n; ++f) ++size[model_.component[f]];
+    SplitMix64 rng(options_.seed);
+    for (int c = 0; c < model_.component_count; ++c) pick[c] = static_cast<int>(rng.below(size[c]));
+    seeds_.assign(model_.component_count, -1);
+    for (int f = 0; f < n; ++f) {
+        int& k = pick[model_.component[f]];
+        if (k-- == 0) seeds_[model_.component[f]] = f;
+    }
+    const std::vector<int> component_seeds = std::move(seeds_);
+    seeds_.clear();
+    for (int s : component_seeds) add_proxy(s);
+    labels_.assign(n, -1);
+    errors_.assign(n, 0.0);
+    teleports_left_ = options_.teleports;
+    splits_left_ = 2 * std::max(options_.proxies, 16);
+    in_lloyd_ = true;
+    stage_iteration_ = 0;
+    stage_start_energy_ = previous_energy_ = std::numeric_limits<double>::infinity();
+}
+
+double Engine::rms() const { return model_.total_area > 0 ? std::sqrt(std::max(0.0, energy_) / model_.total_area) : 0; }
+
+std::vector<int> Engine::labels() const {
+    std::vector<int> out(input_face_count_, -1);
+    for (std::size_t f = 0; f < labels_.size(); ++f) out[source_face_[f]] = labels_[f];
+    return out;
+}
+
+Quadric Engine::input_quadric(int proxy) const {
+    return normalized(change_frame(proxies_.at(proxy).quadric, model_.frame.scale, model_.frame.translation));
+}
+
+Classification Engine::classify_unit(int proxy) const {
+    const RegionFrame region = region_frame(proxies_[proxy].moments);
+    return classify(proxies_[proxy].quadric, region.center, region.radius, options_.classify);
+}
+
+Classification Engine::classification(int proxy) const {
+    return change_frame(classify_unit(proxy), model_.frame.scale, model_.frame.translation);
+}
+
+void Engine::cancel() { cancel_requested_ = true; }
+
+void Engine::finish(StopReason reason) {
+    stop_reason_ = reason;
+    last_phase_ = Phase::done;
+}
+
+bool Engine::step() {
+    if (done()) return false;
+    if (cancel_requested_) {
+        // A cancelled run still leaves a consistent partition unless it stops right after an operation.
+        if (stage_iteration_ == 0 && in_lloyd_) lloyd_iteration();
+        finish(StopReason::cancelled);
+        return false;
+    }
+    if (in_lloyd_) {
+        if (iterations_ >= options_.max_iterations && stage_iteration_ > 0) {
+            finish(StopReason::max_iterations);
+            return false;
+        }
+        lloyd_iteration();
+        last_phase_ = Phase::lloyd;
+        const bool settled = stage_iteration_ >= 2 && energy_ > previous_energy_ * (1 - options_.convergence);
+        if (settled || stage_iteration_ >= options_.stage_iterations) in_lloyd_ = false;
+        previous_energy_ = energy_;
+        return true;
+    }
+    decide();
+    return !done();
+}
+
+void Engine::run(const ProgressCallback& progress) {
+    while (!done()) {
+        step();
+        if (progress && !progress({last_phase_, static_cast<int>(proxies_.size()), iterations_, rms()}, *this)) {
+            cancel();
+            step();
+        }
+    }
+}
+
+void Engine::lloyd_iteration() {
+    std::fill(labels_.begin(), labels_.end(), -1);
+    face_errors_.reset(model_, quadrics_);
+    flooding_.run(model_, face_errors_, seeds_, labels_);
+    refit();
+    evaluate();
+    ++iterations_;
+    ++stage_iteration_;
+}
+
+void Engine::refit() {
+    for (Proxy& p : proxies_) {
+        p.moments.fill(0.0);
+        p.faces = 0;
+    }
+    for (int f = 0; f < model_.face_count(); ++f) {
+        Proxy& p = proxies_[labels_[f]];
+        add_to(p.moments, model_.moments[f]);
+        ++p.faces;
+    }
+    for (std::size_t i = 0; i < proxies_.size(); ++i) {
+        Proxy& p = proxies_[i];
+        p.area = p.moments[0];
+        const Fit fit = p.faces < options_.min_quadric_faces ? fit_plane(p.moments) : fit_region(p.moments, options_.fit);
+        p.quadric = fit.quadric;
+        p.fit_error = fit.mean_squared;
+        quadrics_[i] = p.quadric;
+    }
+}
+
+void Engine::evaluate() {
+    std::vector<double> best(proxies_.size(), std::numeric_limits<double>::infinity());
+    for (Proxy& p : proxies_) p.error = 0;
+    energy_ = 0;
+    for (std::size_t i = 0; i < proxies_.size(); ++i) proxies_[i].seed = -1;
+    face_errors_.reset(model_, quadrics_);
+    for (int f = 0; f < model_.face_count(); ++f) {
+        const int l = labels_[f];
+        const double e = face_errors_(f, l);
+        errors_[f] = e;
+        proxies_[l].error += e;
+        energy_ += e;
+        if (e < best[l]) best[l] = e, proxies_[l].seed = f;
+    }
+    for (std::size_t i = 0; i < proxies_.size(); ++i) seeds_[i] = proxies_[i].seed;
+}
+
+void Engine::decide() {
+    if (teleport_pending_) {
+        teleport_pending_ = false;
+        if (!(energy_ < snapshot_.energy * (1 - options_.convergence))) {
+            // The teleport did not pay: go back, and stop trying (the same move would be chosen again).
+            labels_ = snapshot_.labels;
+            errors_ = snapshot_.errors;
+            proxies_ = snapshot_.proxies;
+            energy_ = snapshot_.energy;
+            quadrics_.resize(proxies_.size());
+            seeds_.resize(proxies_.size());
+            for (std::size_t i = 0; i < proxies_.size(); ++i) quadrics_[i] = proxies_[i].quadric, seeds_[i] = proxies_[i].seed;
+            teleports_left_ = 0;
+        }
+    }
+
+    auto start_stage = [&](Phase phase) {
+        last_phase_ = phase;
+        in_lloyd_ = true;
+        stage_iteration_ = 0;
+        stage_start_energy_ = previous_energy_ = energy_;
+    };
+
+    const int count = static_cast<int>(proxies_.size());
+    const int target = options_.proxies;
+    if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
+        return finish(StopReason::tolerance);
+    if (target > 0 && count > target) {
+        if (merge_cheapest(false)) return start_stage(Phase::merge);
+        return finish(StopReason::proxies);
+    }
+    if (target > 0 && count == target) {
+        if (teleports_left_ > 0) {
+            snapshot_ = {labels_, errors_, proxies_, energy_};
+            if (merge_cheapest(true)) {
+                insert_farthest();
+                --teleports_left_;
+                teleport_pending_ = true;
+                return start_stage(Phase::teleport);
+            }
+        }
+        return finish(StopReason::proxies);
+    }
+    if (count >= model_.face_count()) return finish(StopReason::exhausted);
+    // Growing: an invalid region is split instead of inserting elsewhere.
+    if (splits_left_ > 0 && split_invalid()) {
+        --splits_left_;
+        return start_stage(Phase::split);
+    }
+    insert_farthest();
+    if (static_cast<int>(proxies_.size()) == count) return finish(StopReason::exhausted);
+    start_stage(Phase::insert);
+}
+
+void Engine::insert_farthest() {
+    // The region of largest total error, and in it the face of largest error.
+    std::vector<int> order(proxies_.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        return proxies_[a].error != proxies_[b].error ? proxies_[a].error > proxies_[b].error : a < b;
+    });
+    for (int region : order) {
+        if (proxies_[region].faces < 2 || !(proxies_[region].error > 0)) continue;
+        int worst = -1;
+        for (int f = 0; f < model_.face_count(); ++f)
+            if (labels_[f] == region && f != seeds_[region] && (worst < 0 || errors_[f] > errors_[worst])) worst = f;
+        add_proxy(worst);
+        return;
+    }
+}
+
+bool Engine::split_invalid() {
+    // The invalid region of largest error is split; one per decision, like an insertion.
+    int chosen = -1, best[2] = {-1, -1};
+    const int count = static_cast<int>(proxies_.size());
+    for (int i = 0; i < count; ++i) {
+        if (proxies_[i].faces < 2 * options_.min_quadric_faces) continue;
+        if (chosen >= 0 && proxies_[i].error <= proxies_[chosen].error) continue;
+        const Classification c = classify_unit(i);
+        if (!has_two_parts(c.type)) continue;
+        double part_area[2] = {0, 0};
+        int part_best[2] = {-1, -1};
+        for (int f = 0; f < model_.face_count(); ++f) {
+            if (labels_[f] != i) continue;
+            const int part = part_of(c, model_.barycentres[f]);
+            if (part == 0) continue;
+            const int k = part > 0 ? 0 : 1;
+            part_area[k] += model_.areas[f];
+            if (part_best[k] < 0 || errors_[f] < errors_[part_best[k]]) part_best[k] = f;
+        }
+        if (std::min(part_area[0], part_area[1]) < options_.split_fraction * proxies_[i].area) continue;
+        chosen = i;
+        best[0] = part_best[0], best[1] = part_best[1];
+    }
+    if (chosen < 0) return false;
+    // Each part restarts from a plane through its best face.
+    proxies_[chosen].quadric = quadrics_[chosen] = plane_through(best[0]);
+    proxies_[chosen].seed = seeds_[chosen] = best[0];
+    add_proxy(best[1]);
+    return true;
+}
+
+bool Engine::merge_cheapest(bool paper_criterion) {
+    std::vector<std::pair<int, int>> pairs;
+    const DualGraph& g = model_.graph;
+    for (int f = 0; f < model_.face_count(); ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int a = labels_[f], b = labels_[g.neighbor[e]];
+            if (a < b) pairs.emplace_back(a, b);
+        }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+
+    double largest = 0;
+    for (const Proxy& p : proxies_) largest = std::max(largest, p.fit_error);
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_pair = -1;
+    Fit best_fit;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const Proxy &a = proxies_[pairs[k].first], &b = proxies_[pairs[k].second];
+        Moments united = a.moments;
+        add_to(united, b.moments);
+        const Fit fit = a.faces + b.faces < options_.min_quadric_faces ? fit_plane(united) : fit_region(united, options_.fit);
+        if (paper_criterion && !(std::abs(fit.mean_squared - (a.fit_error + b.fit_error)) < 0.5 * largest)) continue;
+        const RegionFrame region = region_frame(united);
+        if (has_two_parts(classify(fit.quadric, region.center, region.radius, options_.classify).type)) continue;
+        const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
+        if (cost < best_cost) best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
+    }
+    if (best_pair < 0) return false;
+    const auto [keep, gone] = pairs[best_pair];
+    Proxy& p = proxies_[keep];
+    add_to(p.moments, proxies_[gone].moments);
+    p.area = p.moments[0];
+    p.faces += proxies_[gone].faces;
+    p.quadric = quadrics_[keep] = best_fit.quadric;
+    p.fit_error = best_fit.mean_squared;
+    for (int& l : labels_)
+        if (l == gone) l = keep;
+    remove_proxy(gone);
+    evaluate();
+    return true;
+}
+
+Quadric Engine::plane_through(int face) const {
+    const Triangle& t = model_.triangles[face];
+    const Vec3 normal =
+        (model_.points[t[1]] - model_.points[t[0]]).cross(model_.points[t[2]] - model_.points[t[0]]).normalized();
+    return normalized(Quadric::plane(normal, model_.barycentres[face]));
+}
+
+void Engine::add_proxy(int seed) {
+    Proxy p;
+    p.quadric = plane_through(seed);
+    p.seed = seed;
+    proxies_.push_back(p);
+    quadrics_.push_back(p.quadric);
+    seeds_.push_back(seed);
+}
+
+void Engine::remove_proxy(int index) {
+    proxies_.erase(proxies_.begin() + index);
+    quadrics_.erase(quadrics_.begin() + index);
+    seeds_.erase(seeds_.begin() + index);
+    for (int& l : labels_)
+        if (l > index) --l;
+}
+
+}  // namespace vqsa

@@ -1,0 +1,150 @@
+// Variational quadric shape approximation: Lloyd iteration with progressive proxy
+// insertion, validity splits, merging and teleportation (ALGORITHM §3–4).
+#pragma once
+
+#include "classify.h"
+#include "fit.h"
+#include "flooding.h"
+#include "model.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vqsa {
+
+struct EngineOptions {
+    int proxies = 0;          // stop at this many proxies (0: no count target)
+    double tolerance = 0;     // stop when the RMS distance (relative to the longest bounding-box side) is below
+    int max_iterations = 2000;  // Lloyd iterations in all
+    std::uint64_t seed = 1;   // picks the first seed face of each component
+
+    // Lloyd stops when the energy falls by less than this fraction, or after
+    // `stage_iterations` iterations, before the next proxy operation.
+    double convergence = 1e-3;
+    int stage_iterations = 12;
+    // Merge-and-reinsert attempts once the proxy count is reached.
+    int teleports = 4;
+    // A region whose quadric has two parts is split when the smaller part holds at
+    // least this fraction of its area.
+    double split_fraction = 0.05;
+    // Regions with fewer faces get a plane: a quadric through a handful of flat
+    // triangles is underdetermined.
+    int min_quadric_faces = 10;
+    FitOptions fit;
+    ClassifyOptions classify;
+};
+
+// Throws std::invalid_argument naming the offending option.
+void validate(const EngineOptions& options);
+
+enum class Phase { initialize, lloyd, insert, split, merge, teleport, done };
+const char* phase_name(Phase phase);
+
+enum class StopReason { none, proxies, tolerance, max_iterations, cancelled, exhausted };
+const char* stop_reason_name(StopReason reason);
+
+struct Proxy {
+    Quadric quadric;        // unit frame, unit norm
+    Moments moments{};      // sum over the region
+    double area = 0;        // unit frame
+    double error = 0;       // Σ d(t, P) over the region
+    double fit_error = 0;   // the fit's mean squared distance (unit frame)
+    int faces = 0;
+    int seed = -1;
+};
+
+class Engine;
+
+struct ProgressEvent {
+    Phase phase;
+    int proxies;
+    int iteration;  // Lloyd iterations so far
+    double rms;     // current RMS distance, relative to the longest bounding-box side
+};
+
+// Return false to cancel. Labels and proxies are read from the engine when wanted, so
+// an event costs nothing beyond the call.
+using ProgressCallback = std::function<bool(const ProgressEvent&, const Engine&)>;
+
+class Engine {
+public:
+    Engine(const Mesh& mesh, const EngineOptions& options);
+
+    // One unit of work: a Lloyd iteration or one proxy operation. False when done.
+    bool step();
+    // Steps until done, reporting after every step.
+    void run(const ProgressCallback& progress = {});
+    void cancel();
+
+    bool done() const { return stop_reason_ != StopReason::none; }
+    StopReason stop_reason() const { return stop_reason_; }
+    int iterations() const { return iterations_; }
+    Phase last_phase() const { return last_phase_; }
+
+    const Model& model() const { return model_; }
+    const EngineOptions& options() const { return options_; }
+    const std::vector<Proxy>& proxies() const { return proxies_; }
+    // Region of every kept face, in the model's face order.
+    const std::vector<int>& face_labels() const { return labels_; }
+    const std::vector<double>& face_errors() const { return errors_; }
+    // Region of every input face, in the input's order (-1 for dropped faces).
+    std::vector<int> labels() const;
+    // Σ d(t, P) over the mesh (unit frame).
+    double energy() const { return energy_; }
+    double rms() const;  // relative to the longest bounding-box side
+    // A proxy's quadric and type in the input's coordinates.
+    Quadric input_quadric(int proxy) const;
+    Classification classification(int proxy) const;
+
+private:
+    struct Snapshot {
+        std::vector<int> labels;
+        std::vector<double> errors;
+        std::vector<Proxy> proxies;
+        double energy = 0;
+    };
+
+    void initialize();
+    void lloyd_iteration();
+    void decide();
+    void refit();
+    void evaluate();
+    void insert_farthest();
+    bool split_invalid();
+    bool merge_cheapest(bool paper_criterion);
+    Quadric plane_through(int face) const;
+    void add_proxy(int seed);  // a plane through the seed face
+    void remove_proxy(int index);
+    Classification classify_unit(int proxy) const;
+    void finish(StopReason reason);
+
+    std::vector<int> source_face_;
+    int input_face_count_;
+    Model model_;
+    EngineOptions options_;
+    Flooding flooding_;
+    FaceErrors face_errors_;
+
+    std::vector<Proxy> proxies_;
+    std::vector<Quadric> quadrics_;  // the proxies' quadrics, as flooding takes them
+    std::vector<int> seeds_;
+    std::vector<int> labels_;
+    std::vector<double> errors_;
+    double energy_ = 0;
+    double stage_start_energy_ = 0;
+    double previous_energy_ = 0;
+    int stage_iteration_ = 0;
+    int iterations_ = 0;
+    int teleports_left_ = 0;
+    int splits_left_ = 0;
+    bool in_lloyd_ = false;
+    bool teleport_pending_ = false;
+    Snapshot snapshot_;
+    Phase last_phase_ = Phase::initialize;
+    StopReason stop_reason_ = StopReason::none;
+    bool cancel_requested_ = false;
+};
+
+}  // namespace vqsa

@@ -1,0 +1,20 @@
+// The run report: what evaluation tools, the CLI and the browser read (JSON).
+#pragma once
+
+#include "engine.h"
+
+#include <nlohmann/json.hpp>
+
+namespace vqsa {
+
+struct Timing {
+    double load = 0, lloyd = 0, total = 0;
+};
+
+// Everything in the input's coordinates and units.
+nlohmann::json make_report(const Mesh& mesh, const Engine& engine, const Timing& timing);
+
+// One proxy: id, type, coefficients, faces, area, rms_error, params.
+nlohmann::json proxy_report(const Engine& engine, int proxy);
+
+}  // namespace vqsa
