@@ -145,8 +145,12 @@ void Engine::run(const ProgressCallback& progress) {
 }
 
 void Engine::lloyd_iteration() {
-    std::fill(labels_.begin(), labels_.end(), -1);
+    // errors_ holds d(f, P) for the current labels and quadrics: most faces end up in
+    // the same region again and need no new evaluation.
+    previous_labels_.swap(labels_);
+    labels_.assign(previous_labels_.size(), -1);
     face_errors_.reset(model_, quadrics_);
+    face_errors_.know(previous_labels_, errors_);
     flooding_.run(model_, face_errors_, seeds_, labels_);
     refit();
     evaluate();
@@ -288,6 +292,7 @@ bool Engine::split_invalid() {
     if (chosen < 0) return false;
     // Each part restarts from a plane through its best face.
     proxies_[chosen].quadric = quadrics_[chosen] = plane_through(best[0]);
+    evaluate();
     proxies_[chosen].seed = seeds_[chosen] = best[0];
     add_proxy(best[1]);
     return true;

@@ -22,8 +22,8 @@ struct EngineOptions {
 
     // Lloyd stops when the energy falls by less than this fraction, or after
     // `stage_iterations` iterations, before the next proxy operation.
-    double convergence = 1e-3;
-    int stage_iterations = 12;
+    double convergence = 3e-3;
+    int stage_iterations = 4;
     // Merge-and-reinsert attempts once the proxy count is reached.
     int teleports = 4;
     // A region whose quadric has two parts is split when the smaller part holds at
@@ -131,6 +131,7 @@ private:
     std::vector<Quadric> quadrics_;  // the proxies' quadrics, as flooding takes them
     std::vector<int> seeds_;
     std::vector<int> labels_;
+    std::vector<int> previous_labels_;
     std::vector<double> errors_;
     double energy_ = 0;
     double stage_start_energy_ = 0;

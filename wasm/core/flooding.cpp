@@ -16,6 +16,8 @@ void FaceErrors::reset(const Model& model, const std::vector<Quadric>& proxies) 
         distance2_.assign(model.points.size(), 0.0);
     }
     ++generation_;
+    known_labels_ = nullptr;
+    known_errors_ = nullptr;
 }
 
 double FaceErrors::vertex_distance2(int vertex, int proxy) {
@@ -28,7 +30,7 @@ double FaceErrors::vertex_distance2(int vertex, int proxy) {
     return distance2_[vertex];
 }
 
-double FaceErrors::operator()(int face, int proxy) {
+double FaceErrors::compute(int face, int proxy) {
     const Triangle& t = model_->triangles[face];
     const double g = taubin_distance((*proxies_)[proxy], hessian_norms_[proxy], model_->barycentres[face]);
     return 0.25 * model_->areas[face] *
