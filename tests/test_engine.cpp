@@ -1,6 +1,7 @@
 #include "distance.h"
 #include "engine.h"
 #include "mesh_io.h"
+#include "model.h"
 #include "shapes.h"
 #include "test_support.h"
 
@@ -205,4 +206,54 @@ TEST(Engine, ResultsAreInInputCoordinates) {
             if (eb.face_labels()[f] == i)
                 EXPECT_LT(taubin_distance(q, b.mesh.vertices[b.mesh.triangles[f][0]]), 1e-3 * 1000);
     }
+}
+
+TEST(Engine, ARegionOnTwoPlanesIsSplit) {
+    // An open "L": two perpendicular rectangles sharing an edge. One quadric fits
+    // both exactly, as a pair of intersecting planes: invalid, so it must be split.
+    PolygonSoup soup;
+    const Shape floor = make_grid([](double u, double v) { return Vec3(u, v, 0); }, 0, 1, 0, 1, 20, 20);
+    const Shape wall = make_grid([](double u, double v) { return Vec3(u, 0, v); }, 0, 1, 0, 1, 20, 20);
+    for (const Mesh* m : {&floor.mesh, &wall.mesh}) {
+        const int base = static_cast<int>(soup.positions.size());
+        for (const Vec3& p : m->vertices) soup.positions.push_back(p);
+        for (const Triangle& t : m->triangles) {
+            const int tri[3] = {t[0] + base, t[1] + base, t[2] + base};
+            soup.add_polygon(tri, 3);
+        }
+    }
+    const Mesh mesh = build_mesh(soup);
+    ASSERT_EQ(make_model(mesh).component_count, 1);
+
+    bool split_seen = false;
+    Engine engine(mesh, with_proxies(2));
+    engine.run([&](const ProgressEvent& e, const Engine&) {
+        split_seen |= e.phase == Phase::split;
+        return true;
+    });
+    EXPECT_TRUE(split_seen);
+    ASSERT_EQ(engine.proxies().size(), 2u);
+    // Each plane is one region, and both are planes.
+    const std::vector<int>& labels = engine.face_labels();
+    const int floor_faces = static_cast<int>(floor.mesh.triangles.size());
+    for (int f = 0; f < engine.model().face_count(); ++f) EXPECT_EQ(labels[f], labels[f < floor_faces ? 0 : floor_faces]);
+    EXPECT_NE(labels[0], labels[floor_faces]);
+    for (int i = 0; i < 2; ++i) EXPECT_EQ(engine.classification(i).type, QuadricType::plane);
+    EXPECT_LT(engine.rms(), 1e-9);
+}
+
+TEST(Engine, TeleportsNeverLeaveTheEnergyHigher) {
+    const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
+    double before_teleports = -1;
+    int teleports = 0;
+    Engine engine(mesh, with_proxies(22));
+    engine.run([&](const ProgressEvent& e, const Engine& eng) {
+        teleports += e.phase == Phase::teleport;
+        // The last converged state at the target count, before any teleport.
+        if (e.phase == Phase::lloyd && e.proxies == 22 && teleports == 0) before_teleports = eng.energy();
+        return true;
+    });
+    ASSERT_GT(teleports, 0);
+    ASSERT_GT(before_teleports, 0);
+    EXPECT_LE(engine.energy(), before_teleports);
 }

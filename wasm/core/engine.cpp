@@ -298,7 +298,7 @@ bool Engine::split_invalid() {
     return true;
 }
 
-bool Engine::merge_cheapest(bool paper_criterion) {
+bool Engine::merge_cheapest(bool gated) {
     std::vector<std::pair<int, int>> pairs;
     const DualGraph& g = model_.graph;
     for (int f = 0; f < model_.face_count(); ++f)
@@ -309,8 +309,11 @@ bool Engine::merge_cheapest(bool paper_criterion) {
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
 
-    double largest = 0;
-    for (const Proxy& p : proxies_) largest = std::max(largest, p.fit_error);
+    // Gates: the paper's |Et - (Ei + Ej)| < 0.5 max Ek on mean squared errors, or, as
+    // in planar VSA's teleportation, a merge that costs less than half the error of
+    // the worst region (which the freed proxy will then be inserted into).
+    double largest = 0, worst_region = 0;
+    for (const Proxy& p : proxies_) largest = std::max(largest, p.fit_error), worst_region = std::max(worst_region, p.area * p.fit_error);
     double best_cost = std::numeric_limits<double>::infinity();
     int best_pair = -1;
     Fit best_fit;
@@ -319,10 +322,14 @@ bool Engine::merge_cheapest(bool paper_criterion) {
         Moments united = a.moments;
         add_to(united, b.moments);
         const Fit fit = a.faces + b.faces < options_.min_quadric_faces ? fit_plane(united) : fit_region(united, options_.fit);
-        if (paper_criterion && !(std::abs(fit.mean_squared - (a.fit_error + b.fit_error)) < 0.5 * largest)) continue;
-        const RegionFrame region = region_frame(united);
-        if (has_two_parts(classify(fit.quadric, region.center, region.radius, options_.classify).type)) continue;
         const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
+        if (gated && !(std::abs(fit.mean_squared - (a.fit_error + b.fit_error)) < 0.5 * largest) &&
+            !(cost < 0.5 * worst_region))
+            continue;
+        if (cost >= best_cost) continue;
+        const RegionFrame region = region_frame(united);
+        const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
+        if (has_two_parts(type)) continue;
         if (cost < best_cost) best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
     }
     if (best_pair < 0) return false;

@@ -113,7 +113,8 @@ private:
     void evaluate();
     void insert_farthest();
     bool split_invalid();
-    bool merge_cheapest(bool paper_criterion);
+    // The adjacent pair whose union fit costs least; `gated`: only if merging pays.
+    bool merge_cheapest(bool gated);
     Quadric plane_through(int face) const;
     void add_proxy(int seed);  // a plane through the seed face
     void remove_proxy(int index);
