@@ -94,17 +94,9 @@ TEST(Engine, ClosedCylinderSplitsIntoSideAndTwoDisks) {
 TEST(Engine, SameSeedSameLabelsAndEveryComponentGetsAProxy) {
     // Three separate parts: two capsules and a closed cylinder, side by side.
     PolygonSoup soup;
-    auto append = [&](const Mesh& m, const Vec3& offset) {
-        const int base = static_cast<int>(soup.positions.size());
-        for (const Vec3& p : m.vertices) soup.positions.push_back(p + offset);
-        for (const Triangle& t : m.triangles) {
-            const int tri[3] = {t[0] + base, t[1] + base, t[2] + base};
-            soup.add_polygon(tri, 3);
-        }
-    };
-    append(make_capsule(0.5, 1, 32, 8).mesh, Vec3(0, 0, 0));
-    append(make_capsule(0.3, 2, 32, 8).mesh, Vec3(3, 0, 0));
-    append(make_closed_cylinder(0.4, 1, 32, 6).mesh, Vec3(0, 4, 0));
+    append(soup, make_capsule(0.5, 1, 32, 8).mesh);
+    append(soup, make_capsule(0.3, 2, 32, 8).mesh, Vec3(3, 0, 0));
+    append(soup, make_closed_cylinder(0.4, 1, 32, 6).mesh, Vec3(0, 4, 0));
     const Mesh mesh = build_mesh(soup);
 
     Engine first(mesh, with_proxies(8, 42)), second(mesh, with_proxies(8, 42));
@@ -214,14 +206,8 @@ TEST(Engine, ARegionOnTwoPlanesIsSplit) {
     PolygonSoup soup;
     const Shape floor = make_grid([](double u, double v) { return Vec3(u, v, 0); }, 0, 1, 0, 1, 20, 20);
     const Shape wall = make_grid([](double u, double v) { return Vec3(u, 0, v); }, 0, 1, 0, 1, 20, 20);
-    for (const Mesh* m : {&floor.mesh, &wall.mesh}) {
-        const int base = static_cast<int>(soup.positions.size());
-        for (const Vec3& p : m->vertices) soup.positions.push_back(p);
-        for (const Triangle& t : m->triangles) {
-            const int tri[3] = {t[0] + base, t[1] + base, t[2] + base};
-            soup.add_polygon(tri, 3);
-        }
-    }
+    append(soup, floor.mesh);
+    append(soup, wall.mesh);
     const Mesh mesh = build_mesh(soup);
     ASSERT_EQ(make_model(mesh).component_count, 1);
 

@@ -117,7 +117,6 @@ int main(int argc, char** argv) {
         const vqsa::Mesh mesh = vqsa::read_mesh_file(args.input);
         const auto t1 = Clock::now();
         vqsa::Engine engine(mesh, args.options);
-        const auto t2 = Clock::now();
         engine.run([&](const vqsa::ProgressEvent& e, const vqsa::Engine&) {
             if (!args.quiet && e.phase != vqsa::Phase::lloyd)
                 std::fprintf(stderr, "%-10s proxies %4d  iteration %5d  rms %.3e\n", vqsa::phase_name(e.phase),
@@ -126,7 +125,6 @@ int main(int argc, char** argv) {
         });
         const auto t3 = Clock::now();
         const vqsa::Timing timing{seconds(t0, t1), seconds(t1, t3), seconds(t0, t3)};
-        (void)t2;
         const nlohmann::json report = vqsa::make_report(mesh, engine, timing);
         if (!args.report.empty()) write_file(args.report, report.dump(1) + "\n");
         if (!args.labels.empty()) {

@@ -79,7 +79,7 @@ void Engine::initialize() {
     splits_left_ = 2 * std::max(options_.proxies, 16);
     in_lloyd_ = true;
     stage_iteration_ = 0;
-    stage_start_energy_ = previous_energy_ = std::numeric_limits<double>::infinity();
+    previous_energy_ = std::numeric_limits<double>::infinity();
 }
 
 double Engine::rms() const { return model_.total_area > 0 ? std::sqrt(std::max(0.0, energy_) / model_.total_area) : 0; }
@@ -215,7 +215,7 @@ void Engine::decide() {
         last_phase_ = phase;
         in_lloyd_ = true;
         stage_iteration_ = 0;
-        stage_start_energy_ = previous_energy_ = energy_;
+        previous_energy_ = energy_;
     };
 
     const int count = static_cast<int>(proxies_.size());

@@ -135,7 +135,6 @@ private:
     std::vector<int> previous_labels_;
     std::vector<double> errors_;
     double energy_ = 0;
-    double stage_start_energy_ = 0;
     double previous_energy_ = 0;
     int stage_iteration_ = 0;
     int iterations_ = 0;

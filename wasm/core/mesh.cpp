@@ -66,13 +66,12 @@ Mesh build_mesh(const PolygonSoup& soup) {
         }
     }
     mesh.input_vertex_count = static_cast<int>(mesh.vertices.size());
-    auto vertex = [&](int v) { return welded[v]; };
 
     int fanned = 0;
     for (std::size_t f = 0; f < soup.polygon_count(); ++f) {
         const int begin = soup.polygon_start[f], end = soup.polygon_start[f + 1];
         for (int k = begin + 1; k + 1 < end; ++k, ++fanned) {
-            const Triangle t{vertex(soup.indices[begin]), vertex(soup.indices[k]), vertex(soup.indices[k + 1])};
+            const Triangle t{welded[soup.indices[begin]], welded[soup.indices[k]], welded[soup.indices[k + 1]]};
             if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
             const Vec3& a = mesh.vertices[t[0]];
             const Vec3 e1 = mesh.vertices[t[1]] - a, e2 = mesh.vertices[t[2]] - a;

@@ -88,6 +88,15 @@ Shape make_grid(const std::function<Vec3(double, double)>& surface, double u0, d
     return finish(soup, std::vector<int>(2 * std::size_t(nu) * nv, 0));
 }
 
+void append(PolygonSoup& soup, const Mesh& mesh, const Vec3& offset) {
+    const int base = static_cast<int>(soup.positions.size());
+    for (const Vec3& p : mesh.vertices) soup.positions.push_back(p + offset);
+    for (const Triangle& t : mesh.triangles) {
+        const int triangle[3] = {t[0] + base, t[1] + base, t[2] + base};
+        soup.add_polygon(triangle, 3);
+    }
+}
+
 void transform(Mesh& mesh, const Eigen::Matrix3d& rotation, const Vec3& translation) {
     for (Vec3& p : mesh.vertices) p = rotation * p + translation;
 }

@@ -41,6 +41,9 @@ Shape make_closed_cylinder(double radius, double height, int around, int rings);
 Shape make_grid(const std::function<Vec3(double, double)>& surface, double u0, double u1, double v0, double v1,
                 int nu, int nv);
 
+// Adds the mesh's triangles to the soup, moved by `offset` (to build scenes of parts).
+void append(PolygonSoup& soup, const Mesh& mesh, const Vec3& offset = Vec3::Zero());
+
 // Applies p → R p + t to every vertex.
 void transform(Mesh& mesh, const Eigen::Matrix3d& rotation, const Vec3& translation);
 
