@@ -152,41 +152,52 @@ void Engine::lloyd_iteration() {
     face_errors_.reset(model_, quadrics_);
     face_errors_.know(previous_labels_, errors_);
     flooding_.run(model_, face_errors_, seeds_, labels_);
-    refit();
-    evaluate();
+    changed_.assign(proxies_.size(), 0);
+    for (std::size_t i = 0; i < proxies_.size(); ++i) changed_[i] = !proxies_[i].fitted;
+    for (int f = 0; f < model_.face_count(); ++f)
+        if (labels_[f] != previous_labels_[f]) {
+            changed_[labels_[f]] = 1;
+            if (previous_labels_[f] >= 0) changed_[previous_labels_[f]] = 1;
+        }
+    refit(changed_);
+    evaluate(&changed_);
     ++iterations_;
     ++stage_iteration_;
 }
 
-void Engine::refit() {
-    for (Proxy& p : proxies_) {
-        p.moments.fill(0.0);
-        p.faces = 0;
-    }
+void Engine::refit(const std::vector<char>& changed) {
+    for (std::size_t i = 0; i < proxies_.size(); ++i)
+        if (changed[i]) {
+            proxies_[i].moments.fill(0.0);
+            proxies_[i].faces = 0;
+        }
     for (int f = 0; f < model_.face_count(); ++f) {
+        if (!changed[labels_[f]]) continue;
         Proxy& p = proxies_[labels_[f]];
         add_to(p.moments, model_.moments[f]);
         ++p.faces;
     }
     for (std::size_t i = 0; i < proxies_.size(); ++i) {
+        if (!changed[i]) continue;
         Proxy& p = proxies_[i];
         p.area = p.moments[0];
         const Fit fit = p.faces < options_.min_quadric_faces ? fit_plane(p.moments) : fit_region(p.moments, options_.fit);
         p.quadric = fit.quadric;
         p.fit_error = fit.mean_squared;
+        p.fitted = true;
         quadrics_[i] = p.quadric;
     }
 }
 
-void Engine::evaluate() {
+void Engine::evaluate(const std::vector<char>* changed) {
     std::vector<double> best(proxies_.size(), std::numeric_limits<double>::infinity());
-    for (Proxy& p : proxies_) p.error = 0;
+    for (Proxy& p : proxies_) p.error = 0, p.seed = -1;
     energy_ = 0;
-    for (std::size_t i = 0; i < proxies_.size(); ++i) proxies_[i].seed = -1;
     face_errors_.reset(model_, quadrics_);
     for (int f = 0; f < model_.face_count(); ++f) {
         const int l = labels_[f];
-        const double e = face_errors_(f, l);
+        // An unchanged region kept its faces and its quadric: their errors stand.
+        const double e = changed && !(*changed)[l] ? errors_[f] : face_errors_(f, l);
         errors_[f] = e;
         proxies_[l].error += e;
         energy_ += e;
@@ -292,6 +303,7 @@ bool Engine::split_invalid() {
     if (chosen < 0) return false;
     // Each part restarts from a plane through its best face.
     proxies_[chosen].quadric = quadrics_[chosen] = plane_through(best[0]);
+    proxies_[chosen].fitted = false;
     evaluate();
     proxies_[chosen].seed = seeds_[chosen] = best[0];
     add_proxy(best[1]);
@@ -340,6 +352,7 @@ bool Engine::merge_cheapest(bool gated) {
     p.faces += proxies_[gone].faces;
     p.quadric = quadrics_[keep] = best_fit.quadric;
     p.fit_error = best_fit.mean_squared;
+    p.fitted = true;
     for (int& l : labels_)
         if (l == gone) l = keep;
     remove_proxy(gone);

@@ -53,6 +53,7 @@ struct Proxy {
     double fit_error = 0;   // the fit's mean squared distance (unit frame)
     int faces = 0;
     int seed = -1;
+    bool fitted = false;    // the quadric is the fit of `moments` (not a seed plane)
 };
 
 class Engine;
@@ -109,8 +110,9 @@ private:
     void initialize();
     void lloyd_iteration();
     void decide();
-    void refit();
-    void evaluate();
+    // Both skip the regions whose faces did not change since their last fit.
+    void refit(const std::vector<char>& changed);
+    void evaluate(const std::vector<char>* changed = nullptr);
     void insert_farthest();
     bool split_invalid();
     // The adjacent pair whose union fit costs least; `gated`: only if merging pays.
@@ -133,6 +135,7 @@ private:
     std::vector<int> seeds_;
     std::vector<int> labels_;
     std::vector<int> previous_labels_;
+    std::vector<char> changed_;  // per proxy, in the current Lloyd iteration
     std::vector<double> errors_;
     double energy_ = 0;
     double previous_energy_ = 0;
