@@ -253,6 +253,7 @@ TEST(Readers, BadInputGivesAClearErrorNamingTheFile) {
         {"truncated.off", off.substr(0, off.size() / 2), "end of file"},
         {"nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", "not a finite number"},
         {"inf.obj", "v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n", "not a finite number"},
+        {"overflow.off", "OFF\n3 1 0\n1e308 0 0\n-1e308 0 0\n0 1e308 0\n3 0 1 2\n", "beyond"},
         {"range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "out of range"},
         {"negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "out of range"},
         {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "out of range"},
@@ -279,5 +280,11 @@ TEST(Readers, BadInputGivesAClearErrorNamingTheFile) {
         FAIL() << "no error";
     } catch (const MeshReadError& e) {
         EXPECT_STREQ(e.what(), "/nonexistent/missing.off: cannot open the file");
+    }
+    try {
+        read_mesh_file(VQSA_SHARED_MESHES);
+        FAIL() << "no error";
+    } catch (const MeshReadError& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot"), std::string::npos) << e.what();
     }
 }

@@ -3,6 +3,7 @@
 #include "mesh_io.h"
 #include "report.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -45,6 +46,7 @@ struct Arguments {
     std::string input, report, labels;
     vqsa::EngineOptions options;
     bool quiet = false;
+    bool default_proxies = false;  // no --proxies and no --tolerance: 20, or fewer on tiny meshes
 };
 
 Arguments parse(int argc, char** argv) {
@@ -90,7 +92,7 @@ Arguments parse(int argc, char** argv) {
         }
     }
     if (a.input.empty()) throw UsageError("no input file");
-    if (!proxies_given && a.options.tolerance == 0) a.options.proxies = 20;
+    a.default_proxies = !proxies_given && a.options.tolerance == 0;
     return a;
 }
 
@@ -116,6 +118,7 @@ int main(int argc, char** argv) {
         const auto t0 = Clock::now();
         const vqsa::Mesh mesh = vqsa::read_mesh_file(args.input);
         const auto t1 = Clock::now();
+        if (args.default_proxies) args.options.proxies = static_cast<int>(std::min<std::size_t>(20, mesh.triangles.size()));
         vqsa::Engine engine(mesh, args.options);
         engine.run([&](const vqsa::ProgressEvent& e, const vqsa::Engine&) {
             if (!args.quiet && e.phase != vqsa::Phase::lloyd)

@@ -125,7 +125,7 @@ bool Engine::step() {
         }
         lloyd_iteration();
         last_phase_ = Phase::lloyd;
-        const bool settled = stage_iteration_ >= 2 && energy_ > previous_energy_ * (1 - options_.convergence);
+        const bool settled = stage_iteration_ >= 2 && energy_ >= previous_energy_ * (1 - options_.convergence);
         if (settled || stage_iteration_ >= options_.stage_iterations) in_lloyd_ = false;
         previous_energy_ = energy_;
         return true;

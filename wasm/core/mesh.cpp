@@ -43,6 +43,9 @@ Mesh build_mesh(const PolygonSoup& soup) {
         if (!soup.positions[i].allFinite())
             throw std::invalid_argument("vertex " + std::to_string(i) +
                                         " has a coordinate that is not a finite number");
+        // Squared lengths must not overflow.
+        if (soup.positions[i].cwiseAbs().maxCoeff() > 1e150)
+            throw std::invalid_argument("vertex " + std::to_string(i) + " has a coordinate beyond ±1e150");
     }
     for (std::size_t i = 0; i < soup.indices.size(); ++i) {
         const int v = soup.indices[i];

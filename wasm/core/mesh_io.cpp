@@ -53,8 +53,13 @@ Mesh read_mesh(std::string_view name, const std::uint8_t* data, std::size_t size
 Mesh read_mesh_file(const std::string& path) {
     std::ifstream file(path, std::ios::binary);
     if (!file) throw MeshReadError(path + ": cannot open the file");
-    const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-    if (file.bad()) throw MeshReadError(path + ": error while reading the file");
+    std::string bytes;
+    try {
+        bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    } catch (const std::exception&) {
+        file.setstate(std::ios::badbit);
+    }
+    if (file.bad()) throw MeshReadError(path + ": cannot read the file (a directory?)");
     return read(path, bytes, directory_of(path));
 }
 
