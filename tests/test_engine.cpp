@@ -243,3 +243,30 @@ TEST(Engine, TeleportsNeverLeaveTheEnergyHigher) {
     ASSERT_GT(before_teleports, 0);
     EXPECT_LE(engine.energy(), before_teleports);
 }
+
+TEST(Engine, NonManifoldEdgesAndOpenBoundariesWork) {
+    // Three fins on one edge (a non-manifold edge), each an open square sheet.
+    PolygonSoup soup;
+    for (int k = 0; k < 3; ++k) {
+        const double a = 2 * M_PI * k / 3;
+        const Vec3 out(std::cos(a), std::sin(a), 0);
+        append(soup, make_grid([&](double u, double v) -> Vec3 { return Vec3(0, 0, v) + u * out; }, 0, 1, 0, 1, 8, 8).mesh);
+    }
+    const Mesh mesh = build_mesh(soup);
+    const Model model = make_model(mesh);
+    ASSERT_EQ(model.component_count, 1);
+    Engine engine(mesh, with_proxies(3));
+    engine.run();
+    ASSERT_EQ(engine.proxies().size(), 3u) << stop_reason_name(engine.stop_reason()) << " rms " << engine.rms();
+    EXPECT_TRUE(regions_connected(engine));
+    // Each fin is a plane of its own.
+    const int per_fin = static_cast<int>(mesh.triangles.size()) / 3;
+    std::set<int> fin_labels;
+    for (int k = 0; k < 3; ++k) {
+        const int label = engine.face_labels()[k * per_fin];
+        fin_labels.insert(label);
+        for (int f = k * per_fin; f < (k + 1) * per_fin; ++f) EXPECT_EQ(engine.face_labels()[f], label);
+    }
+    EXPECT_EQ(fin_labels.size(), 3u);
+    EXPECT_LT(engine.rms(), 1e-9);
+}
