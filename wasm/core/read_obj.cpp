@@ -13,9 +13,7 @@ PolygonSoup read_obj(std::string_view text) {
     while (!in.at_end()) {
         const std::string_view keyword = in.token("a keyword");
         if (keyword == "v") {
-            const double x = in.number("a vertex coordinate"), y = in.number("a vertex coordinate"),
-                         z = in.number("a vertex coordinate");
-            soup.positions.emplace_back(x, y, z);
+            soup.positions.push_back(in.point());
             recognised = true;
         } else if (keyword == "f") {
             polygon.clear();

@@ -31,9 +31,7 @@ PolygonSoup read_off(std::string_view text) {
     PolygonSoup soup;
     soup.positions.reserve(static_cast<std::size_t>(nv));
     for (std::int64_t i = 0; i < nv; ++i) {
-        const double x = in.number("a vertex coordinate"), y = in.number("a vertex coordinate"),
-                     z = in.number("a vertex coordinate");
-        soup.positions.emplace_back(x, y, z);
+        soup.positions.push_back(in.point());
         in.skip_line();  // colours, normals
     }
     std::vector<int> polygon;

@@ -34,10 +34,8 @@ PolygonSoup read_ascii_stl(std::string_view text) {
         const std::string_view t = in.token("a keyword");
         if (t == "vertex") {
             if (!in_loop) in.fail("'vertex' outside 'outer loop'");
-            const double x = in.number("a vertex coordinate"), y = in.number("a vertex coordinate"),
-                         z = in.number("a vertex coordinate");
             loop.push_back(static_cast<int>(soup.positions.size()));
-            soup.positions.emplace_back(x, y, z);
+            soup.positions.push_back(in.point());
         } else if (t == "loop") {
             in_loop = true;
             loop.clear();

@@ -1,6 +1,8 @@
 // Whitespace-separated tokens of a text mesh format, with line numbers for errors.
 #pragma once
 
+#include "mesh.h"
+
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -19,6 +21,11 @@ public:
     // The next token if it is on the current line, else empty.
     std::string_view token_on_line();
     double number(const char* what);
+    // Three numbers: a vertex position.
+    Vec3 point() {
+        const double x = number("a vertex coordinate"), y = number("a vertex coordinate");
+        return {x, y, number("a vertex coordinate")};
+    }
     std::int64_t integer(const char* what);
     void skip_line();
     std::size_t line() const { return line_; }
