@@ -1,10 +1,12 @@
 // vqsa command line: approximate a mesh by quadric proxies and write a report.
 #include "engine.h"
 #include "mesh_io.h"
+#include "mesh_write.h"
 #include "report.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -20,8 +22,13 @@ const char* kUsage =
     "  --tolerance T         stop when the RMS distance, relative to the longest bounding-box side, is below T\n"
     "  --max-iterations K    cap on Lloyd iterations (default 2000)\n"
     "  --seed S              seed for the initial faces (default 1)\n"
+    "  --rings K             fuzzy band width for boundary smoothing, in face rings (default 1)\n"
+    "  --lambda L            boundary-length weight of the smoothing (default 1)\n"
+    "  --no-smooth           keep the Lloyd boundaries\n"
+    "  --no-refit            keep general quadrics (no plane/sphere/cylinder/cone refit)\n"
     "  --report FILE.json    write the JSON report\n"
     "  --labels FILE.txt     write one proxy id per input face\n"
+    "  --projected FILE      write the projected mesh (.obj, .ply or .off)\n"
     "  --quiet               no progress lines\n";
 
 struct UsageError : std::runtime_error {
@@ -43,7 +50,7 @@ long long integer(const std::string& flag, const char* text) {
 }
 
 struct Arguments {
-    std::string input, report, labels;
+    std::string input, report, labels, projected;
     vqsa::EngineOptions options;
     bool quiet = false;
     bool default_proxies = false;  // no --proxies and no --tolerance: 20, or fewer on tiny meshes
@@ -74,6 +81,20 @@ Arguments parse(int argc, char** argv) {
             const long long n = integer(arg, value());
             if (n < 0) throw UsageError("--seed must be non-negative");
             a.options.seed = static_cast<std::uint64_t>(n);
+        } else if (arg == "--rings") {
+            const long long n = integer(arg, value());
+            if (n < 1 || n > 100) throw UsageError("--rings must be between 1 and 100");
+            a.options.smoothing.rings = static_cast<int>(n);
+        } else if (arg == "--lambda") {
+            a.options.smoothing.lambda = number(arg, value());
+            if (!(a.options.smoothing.lambda >= 0) || !std::isfinite(a.options.smoothing.lambda))
+                throw UsageError("--lambda must be a non-negative number");
+        } else if (arg == "--no-smooth") {
+            a.options.smooth = false;
+        } else if (arg == "--no-refit") {
+            a.options.refit = false;
+        } else if (arg == "--projected") {
+            a.projected = value();
         } else if (arg == "--report") {
             a.report = value();
         } else if (arg == "--labels") {
@@ -120,14 +141,17 @@ int main(int argc, char** argv) {
         const auto t1 = Clock::now();
         if (args.default_proxies) args.options.proxies = static_cast<int>(std::min<std::size_t>(20, mesh.triangles.size()));
         vqsa::Engine engine(mesh, args.options);
-        engine.run([&](const vqsa::ProgressEvent& e, const vqsa::Engine&) {
-            if (!args.quiet && e.phase != vqsa::Phase::lloyd)
+        auto lloyd_end = t1;
+        engine.run([&](const vqsa::ProgressEvent& e, const vqsa::Engine& eng) {
+            if (lloyd_end == t1 && eng.lloyd_done()) lloyd_end = Clock::now();
+            if (!args.quiet && e.phase != vqsa::Phase::lloyd && e.phase != vqsa::Phase::smooth)
                 std::fprintf(stderr, "%-10s proxies %4d  iteration %5d  rms %.3e\n", vqsa::phase_name(e.phase),
                              e.proxies, e.iteration, e.rms);
             return true;
         });
         const auto t3 = Clock::now();
-        const vqsa::Timing timing{seconds(t0, t1), seconds(t1, t3), seconds(t0, t3)};
+        if (lloyd_end == t1) lloyd_end = t3;
+        const vqsa::Timing timing{seconds(t0, t1), seconds(t1, lloyd_end), seconds(lloyd_end, t3), seconds(t0, t3)};
         const nlohmann::json report = vqsa::make_report(mesh, engine, timing);
         if (!args.report.empty()) write_file(args.report, report.dump(1) + "\n");
         if (!args.labels.empty()) {
@@ -138,8 +162,16 @@ int main(int argc, char** argv) {
         std::printf("%s: %d faces, %d components -> %zu proxies (stopped: %s) in %d Lloyd iterations\n",
                     args.input.c_str(), mesh.input_face_count, engine.model().component_count, engine.proxies().size(),
                     vqsa::stop_reason_name(engine.stop_reason()), engine.iterations());
-        std::printf("rms error %.4e (%.4e of the longest side), load %.3f s, approximation %.3f s\n",
-                    engine.rms() * engine.model().frame.scale, engine.rms(), timing.load, timing.lloyd);
+        std::printf("rms error %.4e (%.4e of the longest side), load %.3f s, Lloyd %.3f s, post-processing %.3f s\n",
+                    engine.rms() * engine.model().frame.scale, engine.rms(), timing.load, timing.lloyd, timing.postprocess);
+        if (const auto& m = engine.metrics())
+            std::printf("projected surface vs input: rms %.4e, hausdorff %.4e (of the bounding-box diagonal)\n", m->rms,
+                        m->hausdorff);
+        if (!args.projected.empty()) {
+            const std::vector<vqsa::Vec3> projected = engine.projected_vertices();
+            if (projected.empty()) throw std::runtime_error("no projected mesh (projection was cancelled)");
+            write_file(args.projected, vqsa::write_mesh(args.projected, projected, mesh.triangles));
+        }
         for (const auto& p : report["proxies"])
             std::printf("  %3d %-24s faces %6d  rms %.3e\n", p["id"].get<int>(), p["type"].get<std::string>().c_str(),
                         p["faces"].get<int>(), p["rms_error"].get<double>());

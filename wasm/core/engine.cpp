@@ -17,6 +17,10 @@ const char* phase_name(Phase phase) {
         case Phase::split: return "split";
         case Phase::merge: return "merge";
         case Phase::teleport: return "teleport";
+        case Phase::smooth: return "smooth";
+        case Phase::classify: return "classify";
+        case Phase::project: return "project";
+        case Phase::measure: return "measure";
         case Phase::done: return "done";
     }
     return "unknown";
@@ -45,6 +49,9 @@ void validate(const EngineOptions& o) {
     if (!(o.convergence >= 0 && o.convergence < 1)) fail("convergence must be in [0, 1)");
     if (o.teleports < 0) fail("teleports must be non-negative");
     if (!(o.split_fraction > 0 && o.split_fraction < 0.5)) fail("split fraction must be in (0, 0.5)");
+    if (o.smoothing.rings < 1 || o.smoothing.rings > 100) fail("rings must be between 1 and 100");
+    if (!(o.smoothing.lambda >= 0) || !std::isfinite(o.smoothing.lambda)) fail("lambda must be a non-negative number");
+    if (!(o.max_projection_distance > 0)) fail("the projection distance guard must be positive");
 }
 
 Engine::Engine(const Mesh& mesh, const EngineOptions& options)
@@ -90,6 +97,20 @@ std::vector<int> Engine::labels() const {
     return out;
 }
 
+std::vector<int> Engine::lloyd_labels() const {
+    if (lloyd_labels_.empty()) return labels();
+    std::vector<int> out(input_face_count_, -1);
+    for (std::size_t f = 0; f < lloyd_labels_.size(); ++f) out[source_face_[f]] = lloyd_labels_[f];
+    return out;
+}
+
+std::vector<Vec3> Engine::projected_vertices() const {
+    std::vector<Vec3> out;
+    out.reserve(projected_.size());
+    for (const Vec3& p : projected_) out.push_back(model_.frame.to_input(p));
+    return out;
+}
+
 Quadric Engine::input_quadric(int proxy) const {
     return normalized(change_frame(proxies_.at(proxy).quadric, model_.frame.scale, model_.frame.translation));
 }
@@ -100,28 +121,49 @@ Classification Engine::classify_unit(int proxy) const {
 }
 
 Classification Engine::classification(int proxy) const {
-    return change_frame(classify_unit(proxy), model_.frame.scale, model_.frame.translation);
+    const Classification unit = is_special(proxy) ? *special_[proxy] : classify_unit(proxy);
+    return change_frame(unit, model_.frame.scale, model_.frame.translation);
 }
 
 void Engine::cancel() { cancel_requested_ = true; }
 
-void Engine::finish(StopReason reason) {
+void Engine::end_lloyd(StopReason reason) {
     stop_reason_ = reason;
+    lloyd_labels_ = labels_;
     last_phase_ = Phase::done;
+    if (reason == StopReason::cancelled) stage_ = Stage::done;
+    else next_stage();
+}
+
+// Moves to the next enabled post-processing stage.
+void Engine::next_stage() {
+    const bool enabled[] = {true, options_.smooth, true, options_.project, options_.project && options_.measure, true};
+    int s = static_cast<int>(stage_) + 1;
+    while (!enabled[s]) ++s;
+    stage_ = static_cast<Stage>(s);
 }
 
 bool Engine::step() {
     if (done()) return false;
     if (cancel_requested_) {
-        // A cancelled run still leaves a consistent partition unless it stops right after an operation.
-        if (stage_iteration_ == 0 && in_lloyd_) lloyd_iteration();
-        finish(StopReason::cancelled);
+        if (stage_ == Stage::lloyd) {
+            // A run cancelled right after an operation still needs one flood to be consistent.
+            if (stage_iteration_ == 0 && in_lloyd_) lloyd_iteration();
+            lloyd_labels_ = labels_;
+        }
+        stop_reason_ = StopReason::cancelled;
+        stage_ = Stage::done;
+        last_phase_ = Phase::done;
         return false;
+    }
+    if (stage_ != Stage::lloyd) {
+        post_step();
+        return !done();
     }
     if (in_lloyd_) {
         if (iterations_ >= options_.max_iterations && stage_iteration_ > 0) {
-            finish(StopReason::max_iterations);
-            return false;
+            end_lloyd(StopReason::max_iterations);
+            return !done();
         }
         lloyd_iteration();
         last_phase_ = Phase::lloyd;
@@ -132,6 +174,65 @@ bool Engine::step() {
     }
     decide();
     return !done();
+}
+
+void Engine::post_step() {
+    switch (stage_) {
+        case Stage::smooth:
+            last_phase_ = Phase::smooth;
+            if (!smoother_) smoother_ = std::make_unique<BoundarySmoother>(model_, quadrics_, labels_, seeds_, options_.smoothing);
+            if (smoother_->step()) return;
+            smoother_.reset();
+            // Regions changed: refit every proxy to its new faces.
+            changed_.assign(proxies_.size(), 1);
+            refit(changed_);
+            evaluate();
+            next_stage();
+            return;
+        case Stage::classify:
+            last_phase_ = Phase::classify;
+            special_.assign(proxies_.size(), std::nullopt);
+            if (options_.refit) {
+                for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
+                    const Proxy& p = proxies_[i];
+                    if (p.faces < 2) continue;
+                    const std::optional<SpecialFit> fit =
+                        best_special_fit(region_samples(i), p.quadric, std::sqrt(p.error / p.area), options_.special);
+                    if (!fit) continue;
+                    special_[i] = fit->shape;
+                    proxies_[i].quadric = quadrics_[i] = fit->quadric;
+                }
+                evaluate();
+            }
+            next_stage();
+            return;
+        case Stage::project: {
+            last_phase_ = Phase::project;
+            std::vector<ProjectionTarget> targets;
+            for (std::size_t i = 0; i < proxies_.size(); ++i) targets.push_back({proxies_[i].quadric, special_[i]});
+            projected_ = project_vertices(model_, labels_, targets, options_.max_projection_distance);
+            next_stage();
+            return;
+        }
+        case Stage::measure:
+            last_phase_ = Phase::measure;
+            metrics_ = measure(model_.points, projected_, model_.triangles, labels_, static_cast<int>(proxies_.size()),
+                               options_.metrics);
+            next_stage();
+            return;
+        default: return;
+    }
+}
+
+Samples Engine::region_samples(int proxy) const {
+    Samples s;
+    for (int f = 0; f < model_.face_count(); ++f) {
+        if (labels_[f] != proxy) continue;
+        const double w = 0.25 * model_.areas[f];
+        for (int v : model_.triangles[f]) s.add(model_.points[v], w);
+        s.add(model_.barycentres[f], w);
+    }
+    return s;
 }
 
 void Engine::run(const ProgressCallback& progress) {
@@ -232,10 +333,10 @@ void Engine::decide() {
     const int count = static_cast<int>(proxies_.size());
     const int target = options_.proxies;
     if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
-        return finish(StopReason::tolerance);
+        return end_lloyd(StopReason::tolerance);
     if (target > 0 && count > target) {
         if (merge_cheapest(false)) return start_stage(Phase::merge);
-        return finish(StopReason::proxies);
+        return end_lloyd(StopReason::proxies);
     }
     if (target > 0 && count == target) {
         if (teleports_left_ > 0) {
@@ -247,16 +348,16 @@ void Engine::decide() {
                 return start_stage(Phase::teleport);
             }
         }
-        return finish(StopReason::proxies);
+        return end_lloyd(StopReason::proxies);
     }
-    if (count >= model_.face_count()) return finish(StopReason::exhausted);
+    if (count >= model_.face_count()) return end_lloyd(StopReason::exhausted);
     // Growing: an invalid region is split instead of inserting elsewhere.
     if (splits_left_ > 0 && split_invalid()) {
         --splits_left_;
         return start_stage(Phase::split);
     }
     insert_farthest();
-    if (static_cast<int>(proxies_.size()) == count) return finish(StopReason::exhausted);
+    if (static_cast<int>(proxies_.size()) == count) return end_lloyd(StopReason::exhausted);
     start_stage(Phase::insert);
 }
 

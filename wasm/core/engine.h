@@ -5,7 +5,14 @@
 #include "classify.h"
 #include "fit.h"
 #include "flooding.h"
+#include "graph_cut.h"
+#include "metrics.h"
 #include "model.h"
+#include "project.h"
+#include "special_fit.h"
+
+#include <memory>
+#include <optional>
 
 #include <cstdint>
 #include <functional>
@@ -34,12 +41,24 @@ struct EngineOptions {
     int min_quadric_faces = 10;
     FitOptions fit;
     ClassifyOptions classify;
+
+    // Post-processing, after the Lloyd stage (ALGORITHM §5–8).
+    bool smooth = true;
+    SmoothingOptions smoothing;
+    bool refit = true;  // refit plane, sphere, cylinder and cone by orthogonal distances
+    SpecialFitOptions special;
+    bool project = true;
+    // Foot points farther than this (relative to the longest bounding-box side) are
+    // taken for stray roots and ignored.
+    double max_projection_distance = 0.05;
+    bool measure = true;  // needs `project`
+    MetricsOptions metrics;
 };
 
 // Throws std::invalid_argument naming the offending option.
 void validate(const EngineOptions& options);
 
-enum class Phase { initialize, lloyd, insert, split, merge, teleport, done };
+enum class Phase { initialize, lloyd, insert, split, merge, teleport, smooth, classify, project, measure, done };
 const char* phase_name(Phase phase);
 
 enum class StopReason { none, proxies, tolerance, max_iterations, cancelled, exhausted };
@@ -73,13 +92,16 @@ class Engine {
 public:
     Engine(const Mesh& mesh, const EngineOptions& options);
 
-    // One unit of work: a Lloyd iteration or one proxy operation. False when done.
+    // One unit of work: a Lloyd iteration, a proxy operation, the smoothing of one
+    // boundary, or one post-processing stage. False when done.
     bool step();
     // Steps until done, reporting after every step.
     void run(const ProgressCallback& progress = {});
     void cancel();
 
-    bool done() const { return stop_reason_ != StopReason::none; }
+    bool done() const { return stage_ == Stage::done; }
+    bool lloyd_done() const { return stage_ != Stage::lloyd; }
+    // Why the Lloyd stage stopped (or `cancelled`, if a cancel came at any point).
     StopReason stop_reason() const { return stop_reason_; }
     int iterations() const { return iterations_; }
     Phase last_phase() const { return last_phase_; }
@@ -92,6 +114,13 @@ public:
     const std::vector<double>& face_errors() const { return errors_; }
     // Region of every input face, in the input's order (-1 for dropped faces).
     std::vector<int> labels() const;
+    // The same before boundary smoothing (equal to labels() when smoothing is off).
+    std::vector<int> lloyd_labels() const;
+    // Projected positions, input coordinates, one per mesh vertex (empty until projected).
+    std::vector<Vec3> projected_vertices() const;
+    const std::optional<Metrics>& metrics() const { return metrics_; }
+    // Whether the proxy's quadric is an exact special type from the orthogonal refit.
+    bool is_special(int proxy) const { return proxy < static_cast<int>(special_.size()) && special_[proxy].has_value(); }
     // Σ d(t, P) over the mesh (unit frame).
     double energy() const { return energy_; }
     double rms() const;  // relative to the longest bounding-box side
@@ -121,7 +150,10 @@ private:
     void add_proxy(int seed);  // a plane through the seed face
     void remove_proxy(int index);
     Classification classify_unit(int proxy) const;
-    void finish(StopReason reason);
+    void end_lloyd(StopReason reason);
+    void post_step();
+    void next_stage();
+    Samples region_samples(int proxy) const;
 
     std::vector<int> source_face_;
     int input_face_count_;
@@ -146,8 +178,15 @@ private:
     bool in_lloyd_ = false;
     bool teleport_pending_ = false;
     Snapshot snapshot_;
+    enum class Stage { lloyd, smooth, classify, project, measure, done };
+    Stage stage_ = Stage::lloyd;
     Phase last_phase_ = Phase::initialize;
     StopReason stop_reason_ = StopReason::none;
+    std::vector<int> lloyd_labels_;
+    std::unique_ptr<BoundarySmoother> smoother_;
+    std::vector<std::optional<Classification>> special_;  // unit frame
+    std::vector<Vec3> projected_;                         // unit frame
+    std::optional<Metrics> metrics_;
     bool cancel_requested_ = false;
 };
 

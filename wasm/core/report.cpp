@@ -9,10 +9,17 @@ namespace {
 nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json options_report(const EngineOptions& o) {
-    return {{"proxies", o.proxies},       {"tolerance", o.tolerance},
-            {"max_iterations", o.max_iterations}, {"seed", o.seed},
-            {"convergence", o.convergence}, {"stage_iterations", o.stage_iterations},
-            {"teleports", o.teleports}};
+    return {{"proxies", o.proxies},
+            {"tolerance", o.tolerance},
+            {"max_iterations", o.max_iterations},
+            {"seed", o.seed},
+            {"convergence", o.convergence},
+            {"stage_iterations", o.stage_iterations},
+            {"teleports", o.teleports},
+            {"smooth", o.smooth},
+            {"rings", o.smoothing.rings},
+            {"lambda", o.smoothing.lambda},
+            {"refit", o.refit}};
 }
 
 nlohmann::json params_report(const Classification& c) {
@@ -38,21 +45,25 @@ nlohmann::json proxy_report(const Engine& engine, int i) {
     const Frame& frame = engine.model().frame;
     const Classification c = engine.classification(i);
     const Quadric q = engine.input_quadric(i);
-    // The core issue's vocabulary: the classification refines `quadric` into types.
-    return {{"id", i},
-            {"type", p.quadric.is_plane() ? "plane" : type_name(c.type)},
-            {"coefficients", q.c},
-            {"faces", p.faces},
-            {"area", p.area * frame.scale * frame.scale},
-            {"rms_error", p.area > 0 ? std::sqrt(p.error / p.area) * frame.scale : 0.0},
-            {"params", params_report(c)}};
+    nlohmann::json out = {{"id", i},
+                          {"type", p.quadric.is_plane() ? "plane" : type_name(c.type)},
+                          {"special_fit", engine.is_special(i)},
+                          {"coefficients", q.c},
+                          {"faces", p.faces},
+                          {"area", p.area * frame.scale * frame.scale},
+                          {"rms_error", p.area > 0 ? std::sqrt(p.error / p.area) * frame.scale : 0.0},
+                          {"params", params_report(c)}};
+    if (const auto& m = engine.metrics())
+        out["metrics"] = {{"rms", m->region_rms.at(i)}, {"hausdorff", m->region_hausdorff.at(i)}};
+    return out;
 }
 
 nlohmann::json make_report(const Mesh& mesh, const Engine& engine, const Timing& timing) {
     const Model& model = engine.model();
     nlohmann::json proxies = nlohmann::json::array();
     for (int i = 0; i < static_cast<int>(engine.proxies().size()); ++i) proxies.push_back(proxy_report(engine, i));
-    return {{"generator", "vqsa"},
+    nlohmann::json report = {{"generator", "vqsa"},
+            {"version", VQSA_VERSION},
             {"input",
              {{"vertices", mesh.input_vertex_count},
               {"faces", mesh.input_face_count},
@@ -63,11 +74,15 @@ nlohmann::json make_report(const Mesh& mesh, const Engine& engine, const Timing&
             {"options", options_report(engine.options())},
             {"stop_reason", stop_reason_name(engine.stop_reason())},
             {"iterations", engine.iterations()},
-            {"timing_s", {{"load", timing.load}, {"lloyd", timing.lloyd}, {"total", timing.total}}},
+            {"timing_s",
+             {{"load", timing.load}, {"lloyd", timing.lloyd}, {"postprocess", timing.postprocess}, {"total", timing.total}}},
             {"rms_error", engine.rms() * model.frame.scale},
             {"rms_error_relative", engine.rms()},
             {"proxies", proxies},
-            {"labels", engine.labels()}};
+            {"labels", engine.labels()},
+            {"labels_lloyd", engine.lloyd_labels()}};
+    if (const auto& m = engine.metrics()) report["metrics"] = {{"rms", m->rms}, {"hausdorff", m->hausdorff}};
+    return report;
 }
 
 }  // namespace vqsa

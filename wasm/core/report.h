@@ -8,7 +8,7 @@
 namespace vqsa {
 
 struct Timing {
-    double load = 0, lloyd = 0, total = 0;
+    double load = 0, lloyd = 0, postprocess = 0, total = 0;
 };
 
 // Everything in the input's coordinates and units.
