@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
             const auto t0 = std::chrono::steady_clock::now();
             vqsa::EngineOptions options;
             options.proxies = proxies;
+            options.smooth = options.refit = options.project = false;  // the Lloyd stage alone
             vqsa::Engine engine(mesh, options);
             engine.run();
             times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

@@ -370,9 +370,18 @@ void Engine::insert_farthest() {
     });
     for (int region : order) {
         if (proxies_[region].faces < 2 || !(proxies_[region].error > 0)) continue;
+        // The worst face counted with its neighbours: a lone outlier face (a sliver, a
+        // spike) would seed a proxy that never grows.
         int worst = -1;
-        for (int f = 0; f < model_.face_count(); ++f)
-            if (labels_[f] == region && f != seeds_[region] && (worst < 0 || errors_[f] > errors_[worst])) worst = f;
+        double worst_error = -1;
+        const DualGraph& g = model_.graph;
+        for (int f = 0; f < model_.face_count(); ++f) {
+            if (labels_[f] != region || f == seeds_[region]) continue;
+            double e = errors_[f];
+            for (int k = g.begin(f); k < g.end(f); ++k)
+                if (labels_[g.neighbor[k]] == region) e += errors_[g.neighbor[k]];
+            if (e > worst_error) worst_error = e, worst = f;
+        }
         add_proxy(worst);
         return;
     }

@@ -31,7 +31,8 @@ struct EngineOptions {
     // `stage_iterations` iterations, before the next proxy operation.
     double convergence = 3e-3;
     int stage_iterations = 4;
-    // Merge-and-reinsert attempts once the proxy count is reached.
+    // Merge-and-reinsert attempts once the proxy count is reached: each is kept only
+    // if it lowers the energy, and the first that does not stops them.
     int teleports = 4;
     // A region whose quadric has two parts is split when the smaller part holds at
     // least this fraction of its area.
