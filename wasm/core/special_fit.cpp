@@ -1,5 +1,7 @@
 #include "special_fit.h"
 
+#include "least_squares.h"
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -30,73 +32,6 @@ Vec3 weighted_centroid(const Samples& s) {
     Vec3 c = Vec3::Zero();
     for (std::size_t i = 0; i < s.points.size(); ++i) c += s.weights[i] * s.points[i];
     return c / s.total_weight;
-}
-
-// Levenberg–Marquardt on Σ w r(p; θ)², with a forward-difference Jacobian: the
-// parametrisations below are smooth and few-dimensional, and this runs once per region.
-// At most `limit` samples, evenly strided: enough to pin a handful of parameters.
-Samples thinned(const Samples& s, std::size_t limit) {
-    if (s.points.size() <= limit) return s;
-    Samples out;
-    const double stride = double(s.points.size()) / limit;
-    for (std::size_t k = 0; k < limit; ++k) {
-        const std::size_t i = static_cast<std::size_t>(k * stride);
-        out.add(s.points[i], s.weights[i]);
-    }
-    return out;
-}
-
-template <int N>
-Eigen::Matrix<double, N, 1> least_squares(const Samples& all, Eigen::Matrix<double, N, 1> theta,
-                                          const std::function<double(const Vec3&, const Eigen::Matrix<double, N, 1>&)>& r,
-                                          double scale) {
-    using Vector = Eigen::Matrix<double, N, 1>;
-    const Samples s = thinned(all, 6000);
-    auto cost = [&](const Vector& t) {
-        double c = 0;
-        for (std::size_t i = 0; i < s.points.size(); ++i) {
-            const double v = r(s.points[i], t);
-            c += s.weights[i] * v * v;
-        }
-        return c;
-    };
-    double current = cost(theta), damping = 1e-3;
-    for (int iteration = 0; iteration < 50; ++iteration) {
-        Eigen::Matrix<double, N, N> JtJ = Eigen::Matrix<double, N, N>::Zero();
-        Vector Jtr = Vector::Zero();
-        const double h = 1e-7 * scale;
-        for (std::size_t i = 0; i < s.points.size(); ++i) {
-            const double base = r(s.points[i], theta);
-            Vector J;
-            for (int k = 0; k < N; ++k) {
-                Vector t = theta;
-                t[k] += h;
-                J[k] = (r(s.points[i], t) - base) / h;
-            }
-            JtJ += s.weights[i] * J * J.transpose();
-            Jtr += s.weights[i] * base * J;
-        }
-        bool improved = false;
-        for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
-            Eigen::Matrix<double, N, N> A = JtJ;
-            A.diagonal() += damping * JtJ.diagonal().cwiseMax(1e-30 * Vector::Ones());
-            const Vector step = A.ldlt().solve(-Jtr);
-            const Vector next = theta + step;
-            const double c = cost(next);
-            if (std::isfinite(c) && c < current) {
-                const double gain = current - c;
-                theta = next;
-                current = c;
-                damping = std::max(damping / 3, 1e-12);
-                improved = true;
-                if (gain < 1e-14 * (current + 1e-300)) return theta;
-            } else {
-                damping *= 10;
-            }
-        }
-        if (!improved) break;
-    }
-    return theta;
 }
 
 }  // namespace
@@ -170,7 +105,12 @@ std::optional<SpecialFit> fit_sphere_geometric(const Samples& s) {
     if (!(r2 > 0) || !x.allFinite()) return std::nullopt;
     Eigen::Vector4d theta(origin.x() + x[0], origin.y() + x[1], origin.z() + x[2], std::sqrt(r2));
     theta = least_squares<4>(
-        s, theta, [](const Vec3& p, const Eigen::Vector4d& t) { return (p - t.head<3>()).norm() - t[3]; },
+        s, theta,
+        [](const Eigen::Vector4d& t) {
+            const Vec3 c = t.head<3>();
+            const double r = t[3];
+            return [c, r](const Vec3& p) { return (p - c).norm() - r; };
+        },
         std::sqrt(r2));
     SpecialFit fit;
     fit.shape.type = QuadricType::sphere;
@@ -206,11 +146,14 @@ std::optional<SpecialFit> fit_cylinder_geometric(const Samples& s, const Vec3& a
     theta << 0, 0, 0, 0, std::sqrt(r2);
     theta = least_squares<5>(
         s, theta,
-        [&](const Vec3& p, const Eigen::Matrix<double, 5, 1>& t) {
+        [&](const Eigen::Matrix<double, 5, 1>& t) {
             Vec3 point, axis;
             unpack(t, point, axis);
-            const Vec3 d = p - point;
-            return (d - d.dot(axis) * axis).norm() - t[4];
+            const double r = t[4];
+            return [point, axis, r](const Vec3& p) {
+                const Vec3 d = p - point;
+                return (d - d.dot(axis) * axis).norm() - r;
+            };
         },
         std::sqrt(r2));
     Vec3 point, axis;
@@ -251,12 +194,15 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
     theta << 0, 0, 0, 0, 0, std::atan(m);
     theta = least_squares<6>(
         s, theta,
-        [&](const Vec3& p, const Eigen::Matrix<double, 6, 1>& t) {
+        [&](const Eigen::Matrix<double, 6, 1>& t) {
             Vec3 a, u;
             unpack(t, a, u);
-            const Vec3 d = p - a;
-            const double h = d.dot(u), rho = (d - h * u).norm();
-            return rho * std::cos(t[5]) - std::abs(h) * std::sin(t[5]);
+            const double c = std::cos(t[5]), sn = std::sin(t[5]);
+            return [a, u, c, sn](const Vec3& p) {
+                const Vec3 d = p - a;
+                const double h = d.dot(u), rho = (d - h * u).norm();
+                return rho * c - std::abs(h) * sn;
+            };
         },
         scale);
     Vec3 a, u;
