@@ -1,5 +1,6 @@
 // vqsa command line: approximate a mesh by quadric proxies and write a report.
 #include "engine.h"
+#include "gltf_export.h"
 #include "mesh_io.h"
 #include "mesh_write.h"
 #include "report.h"
@@ -29,6 +30,7 @@ const char* kUsage =
     "  --report FILE.json    write the JSON report\n"
     "  --labels FILE.txt     write one proxy id per input face\n"
     "  --projected FILE      write the projected mesh (.obj, .ply or .off)\n"
+    "  -o, --output FILE.glb write the result as binary glTF with per-region quadric metadata\n"
     "  --quiet               no progress lines\n";
 
 struct UsageError : std::runtime_error {
@@ -50,7 +52,7 @@ long long integer(const std::string& flag, const char* text) {
 }
 
 struct Arguments {
-    std::string input, report, labels, projected;
+    std::string input, report, labels, projected, glb;
     vqsa::EngineOptions options;
     bool quiet = false;
     bool default_proxies = false;  // no --proxies and no --tolerance: 20, or fewer on tiny meshes
@@ -95,6 +97,8 @@ Arguments parse(int argc, char** argv) {
             a.options.refit = false;
         } else if (arg == "--projected") {
             a.projected = value();
+        } else if (arg == "-o" || arg == "--output") {
+            a.glb = value();
         } else if (arg == "--report") {
             a.report = value();
         } else if (arg == "--labels") {
@@ -167,6 +171,7 @@ int main(int argc, char** argv) {
         if (const auto& m = engine.metrics())
             std::printf("projected surface vs input: rms %.4e, hausdorff %.4e (of the bounding-box diagonal)\n", m->rms,
                         m->hausdorff);
+        if (!args.glb.empty()) write_file(args.glb, vqsa::export_glb(mesh, engine));
         if (!args.projected.empty()) {
             const std::vector<vqsa::Vec3> projected = engine.projected_vertices();
             if (projected.empty()) throw std::runtime_error("no projected mesh (projection was cancelled)");

@@ -58,30 +58,35 @@ nlohmann::json proxy_report(const Engine& engine, int i) {
     return out;
 }
 
-nlohmann::json make_report(const Mesh& mesh, const Engine& engine, const Timing& timing) {
+nlohmann::json run_report(const Mesh& mesh, const Engine& engine) {
     const Model& model = engine.model();
+    nlohmann::json run = {{"generator", "vqsa"},
+                          {"version", VQSA_VERSION},
+                          {"input",
+                           {{"vertices", mesh.input_vertex_count},
+                            {"faces", mesh.input_face_count},
+                            {"faces_used", mesh.triangles.size()},
+                            {"components", model.component_count},
+                            {"bbox_diagonal", bounding_box(mesh).diagonal()},
+                            {"bbox_longest_side", model.frame.scale}}},
+                          {"options", options_report(engine.options())},
+                          {"stop_reason", stop_reason_name(engine.stop_reason())},
+                          {"iterations", engine.iterations()},
+                          {"rms_error", engine.rms() * model.frame.scale},
+                          {"rms_error_relative", engine.rms()}};
+    if (const auto& m = engine.metrics()) run["metrics"] = {{"rms", m->rms}, {"hausdorff", m->hausdorff}};
+    return run;
+}
+
+nlohmann::json make_report(const Mesh& mesh, const Engine& engine, const Timing& timing) {
+    nlohmann::json report = run_report(mesh, engine);
     nlohmann::json proxies = nlohmann::json::array();
     for (int i = 0; i < static_cast<int>(engine.proxies().size()); ++i) proxies.push_back(proxy_report(engine, i));
-    nlohmann::json report = {{"generator", "vqsa"},
-            {"version", VQSA_VERSION},
-            {"input",
-             {{"vertices", mesh.input_vertex_count},
-              {"faces", mesh.input_face_count},
-              {"faces_used", mesh.triangles.size()},
-              {"components", model.component_count},
-              {"bbox_diagonal", bounding_box(mesh).diagonal()},
-              {"bbox_longest_side", model.frame.scale}}},
-            {"options", options_report(engine.options())},
-            {"stop_reason", stop_reason_name(engine.stop_reason())},
-            {"iterations", engine.iterations()},
-            {"timing_s",
-             {{"load", timing.load}, {"lloyd", timing.lloyd}, {"postprocess", timing.postprocess}, {"total", timing.total}}},
-            {"rms_error", engine.rms() * model.frame.scale},
-            {"rms_error_relative", engine.rms()},
-            {"proxies", proxies},
-            {"labels", engine.labels()},
-            {"labels_lloyd", engine.lloyd_labels()}};
-    if (const auto& m = engine.metrics()) report["metrics"] = {{"rms", m->rms}, {"hausdorff", m->hausdorff}};
+    report["timing_s"] = {
+        {"load", timing.load}, {"lloyd", timing.lloyd}, {"postprocess", timing.postprocess}, {"total", timing.total}};
+    report["proxies"] = proxies;
+    report["labels"] = engine.labels();
+    report["labels_lloyd"] = engine.lloyd_labels();
     return report;
 }
 

@@ -1,0 +1,57 @@
+// GLB export: the Khronos validator on every GLB the tests write, and a round trip
+// through Three.js's GLTFLoader against the CLI's own report.
+import assert from 'node:assert/strict';
+import { mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { test } from 'node:test';
+import validator from 'gltf-validator';
+import { meshes, nativeBuild, readGlb, runNativeCli, triangleRegions } from './support.mjs';
+
+const work = mkdtempSync(join(tmpdir(), 'vqsa-export-'));
+test.after(() => rmSync(work, { recursive: true, force: true }));
+
+async function validate(path) {
+  const report = await validator.validateBytes(new Uint8Array(readFileSync(path)), { maxIssues: 100 });
+  const errors = report.issues.messages.filter((m) => m.severity === 0);
+  assert.equal(report.issues.numErrors, 0, `${path}: ${JSON.stringify(errors, null, 1)}`);
+}
+
+test('every GLB written by the C++ tests passes the Khronos validator', async () => {
+  const dir = join(nativeBuild, 'test-output');
+  const files = readdirSync(dir).filter((f) => f.endsWith('.glb'));
+  assert.ok(files.length >= 4, `expected the C++ export tests' GLBs in ${dir}`);
+  for (const f of files) await validate(join(dir, f));
+});
+
+for (const [file, proxies] of [['fandisk.off', 22], ['csg.off', 10]]) {
+  test(`${file}: CLI GLB validates and reads back in Three.js like the report`, async () => {
+    const glb = join(work, `${file}.glb`), json = join(work, `${file}.json`);
+    runNativeCli([join(meshes, file), '--proxies', String(proxies), '--quiet', '-o', glb, '--report', json]);
+    await validate(glb);
+    const report = JSON.parse(readFileSync(json, 'utf8'));
+    const gltf = await readGlb(glb);
+
+    const run = gltf.scene.userData;
+    assert.equal(run.generator, 'vqsa');
+    assert.equal(run.stop_reason, report.stop_reason);
+    assert.deepEqual(run.metrics, report.metrics);
+
+    const input = gltf.scene.getObjectByName('input');
+    const projected = gltf.scene.getObjectByName('projected');
+    assert.ok(input && projected);
+    const regions = input.userData.regions;
+    assert.equal(regions.length, report.proxies.length);
+    regions.forEach((r, i) => {
+      assert.equal(r.feature_id, i);
+      assert.equal(r.type, report.proxies[i].type);
+      assert.deepEqual(r.coefficients, report.proxies[i].coefficients);
+    });
+
+    // Triangles are the input's faces in order, less the dropped ones.
+    const dropped = new Set(run.dropped_faces);
+    const kept = report.labels.filter((_, f) => !dropped.has(f));
+    assert.deepEqual(triangleRegions(input), kept);
+    assert.deepEqual(triangleRegions(projected), kept);
+  });
+}
