@@ -1,5 +1,6 @@
 // vqsa command line: approximate a mesh by quadric proxies and write a report.
 #include "engine.h"
+#include "examples.h"
 #include "gltf_export.h"
 #include "mesh_io.h"
 #include "mesh_write.h"
@@ -18,7 +19,8 @@ namespace {
 
 const char* kUsage =
     "usage: vqsa INPUT [options]\n"
-    "  INPUT                 .off .obj .ply .stl .gltf .glb\n"
+    "  INPUT                 .off .obj .ply .stl .gltf .glb, or example:NAME (turned_part, capsule,\n"
+    "                        closed_cylinder, axle)\n"
     "  --proxies N           stop at N proxies (default 20 unless --tolerance is given)\n"
     "  --tolerance T         stop when the RMS distance, relative to the longest bounding-box side, is below T\n"
     "  --max-iterations K    cap on Lloyd iterations (default 2000)\n"
@@ -141,7 +143,9 @@ int main(int argc, char** argv) {
     }
     try {
         const auto t0 = Clock::now();
-        const vqsa::Mesh mesh = vqsa::read_mesh_file(args.input);
+        const std::string example = "example:";
+        const vqsa::Mesh mesh = args.input.rfind(example, 0) == 0 ? vqsa::example_mesh(args.input.substr(example.size()))
+                                                                 : vqsa::read_mesh_file(args.input);
         const auto t1 = Clock::now();
         if (args.default_proxies) args.options.proxies = static_cast<int>(std::min<std::size_t>(20, mesh.triangles.size()));
         vqsa::Engine engine(mesh, args.options);

@@ -185,29 +185,31 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
     if (!(m > 1e-6) || !std::isfinite(q)) return std::nullopt;
     const Vec3 apex = apex_guess - (q / m) * axis;
     const double scale = std::sqrt(sr / sw) + 1e-12;
-    // θ: axis tilt (2), apex offset (3), half-angle.
+    // θ: axis tilt (2), apex offset (3), slope tan(half-angle). The slope rather than the
+    // angle keeps sin and cos (whose last bits differ between C libraries) out of the
+    // iteration, so native and WASM builds converge to the same cone.
     auto unpack = [&](const Eigen::Matrix<double, 6, 1>& t, Vec3& a, Vec3& u) {
         u = (axis + t[0] * frame.col(0) + t[1] * frame.col(1)).normalized();
         a = apex + Vec3(t[2], t[3], t[4]);
     };
     Eigen::Matrix<double, 6, 1> theta;
-    theta << 0, 0, 0, 0, 0, std::atan(m);
+    theta << 0, 0, 0, 0, 0, m;
     theta = least_squares<6>(
         s, theta,
         [&](const Eigen::Matrix<double, 6, 1>& t) {
             Vec3 a, u;
             unpack(t, a, u);
-            const double c = std::cos(t[5]), sn = std::sin(t[5]);
-            return [a, u, c, sn](const Vec3& p) {
+            const double slope = t[5], scale = 1 / std::sqrt(1 + slope * slope);
+            return [a, u, slope, scale](const Vec3& p) {
                 const Vec3 d = p - a;
                 const double h = d.dot(u), rho = (d - h * u).norm();
-                return rho * c - std::abs(h) * sn;
+                return (rho - std::abs(h) * slope) * scale;
             };
         },
         scale);
     Vec3 a, u;
     unpack(theta, a, u);
-    const double alpha = theta[5];
+    const double alpha = std::atan(theta[5]);
     if (!(alpha > 1e-4 && alpha < M_PI / 2 - 1e-4)) return std::nullopt;
     SpecialFit fit;
     fit.shape.type = QuadricType::cone;
