@@ -1,9 +1,18 @@
 #!/usr/bin/env bash
 # Installs the Debian packages vqsa builds with, when some are missing.
 # Non-interactive, so it runs the same in CI and on a fresh machine.
+#   --wasm      also Emscripten (the WASM build)
+#   --browser   also Chromium (the browser tests)
 set -euo pipefail
 
 packages=(cmake g++ make libgtest-dev libeigen3-dev libtinygltf-dev nlohmann-json3-dev libboost-graph-dev)
+for flag in "$@"; do
+  case "$flag" in
+    --wasm) packages+=(emscripten) ;;
+    --browser) packages+=(chromium) ;;
+    *) echo "ensure-deps: unknown flag $flag" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

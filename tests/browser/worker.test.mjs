@@ -1,0 +1,71 @@
+// The worker and its client in headless Chromium: progress with a growing proxy count,
+// a result, and a cancel mid-run followed by a run that works.
+import assert from 'node:assert/strict';
+import { after, before, test } from 'node:test';
+import { guardNetwork, launchBrowser, startSite } from './support.mjs';
+
+let site, browser, page;
+const offsite = [];
+before(async () => {
+  site = await startSite();
+  browser = await launchBrowser();
+  page = await browser.newPage();
+  guardNetwork(page, site.url, offsite);
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(`${site.url}/test/worker-page.html`);
+  await page.waitForFunction(() => window.ready);
+  assert.deepEqual(errors, []);
+});
+after(async () => {
+  await browser?.close();
+  site?.server.close();
+  assert.deepEqual(offsite, [], 'requests left localhost');
+});
+
+test('the worker runs fandisk with growing progress and a result', async () => {
+  const outcome = await page.evaluate(async () => {
+    const client = new window.VqsaClient();
+    const bytes = await (await fetch('/meshes/fandisk.off')).arrayBuffer();
+    const mesh = await client.load(bytes, 'fandisk.off');
+    const counts = [];
+    let labelsOk = true;
+    const result = await client.run({ proxies: 22 }, {
+      onProgress: (p) => {
+        counts.push(p.proxies);
+        labelsOk &&= p.labels instanceof Int32Array && p.labels.length === mesh.triangles.length / 3;
+      },
+    });
+    client.terminate();
+    return { counts, labelsOk, faces: mesh.info.faces, proxies: result.proxies.length, glb: result.glb.length,
+      report: JSON.parse(result.report) };
+  });
+  assert.equal(outcome.faces, 12946);
+  assert.ok(outcome.counts.length >= 5, `only ${outcome.counts.length} progress events`);
+  for (let i = 1; i < outcome.counts.length; ++i) assert.ok(outcome.counts[i] >= outcome.counts[i - 1] - 1);
+  assert.ok(outcome.counts.at(-1) > outcome.counts[0], 'the proxy count grows');
+  assert.ok(outcome.labelsOk);
+  assert.equal(outcome.proxies, 22);
+  assert.equal(outcome.report.stop_reason, 'proxies');
+  assert.ok(outcome.glb > 1000);
+});
+
+test('cancelling mid-run, then running again, works', async () => {
+  const outcome = await page.evaluate(async () => {
+    const client = new window.VqsaClient();
+    await client.loadExample('turned_part');
+    let events = 0;
+    const first = client.run({ proxies: 60 }, { onProgress: () => { if (++events === 3) client.cancel(); } });
+    const cancelled = await first.then(() => 'finished', (e) => e.name);
+    const again = await client.run({ proxies: 6 });
+    const bad = await client.load(new Uint8Array([1, 2, 3]), 'junk.stl').then(() => 'loaded', (e) => e.message);
+    const afterBad = await client.loadExample('capsule').then((m) => m.info.faces);
+    client.terminate();
+    return { cancelled, events, proxies: again.proxies.length, bad, afterBad };
+  });
+  assert.equal(outcome.cancelled, 'AbortError');
+  assert.ok(outcome.events >= 3);
+  assert.equal(outcome.proxies, 6);
+  assert.match(outcome.bad, /junk\.stl: too short for a binary STL/);
+  assert.ok(outcome.afterBad > 0);
+});

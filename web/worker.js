@@ -1,0 +1,94 @@
+// The module worker that owns the WASM instance. Protocol (every request carries an id):
+//   in:  {type:'load', id, bytes, name} | {type:'example', id, name} | {type:'run', id, options} | {type:'cancel'}
+//   out: {type:'loaded', id, info, positions, triangles, sourceFaces}
+//        {type:'progress', id, phase, proxies, iteration, rms, labels}   (≤ 25 per second)
+//        {type:'result', id, ...}  {type:'cancelled', id}  {type:'error', id, message, fatal}
+import createVqsaModule from './vqsa.mjs';
+
+const PROGRESS_INTERVAL_MS = 40;
+const SLICE_MS = 16;
+
+const ready = createVqsaModule();
+let session = null;
+let cancelRequested = false;
+
+// Lets queued messages (a cancel) in between slices of work, without setTimeout's clamping.
+const channel = new MessageChannel();
+const pending = [];
+channel.port1.onmessage = () => pending.shift()?.();
+const yieldToEvents = () => new Promise((resolve) => { pending.push(resolve); channel.port2.postMessage(0); });
+
+function post(message, transfer = []) {
+  self.postMessage(message, transfer);
+}
+
+function loaded(id, info) {
+  const positions = session.positions(), triangles = session.triangles(), sourceFaces = session.sourceFaces();
+  post({ type: 'loaded', id, info, positions, triangles, sourceFaces }, [positions.buffer, triangles.buffer, sourceFaces.buffer]);
+}
+
+function progress(id) {
+  const p = session.progress();
+  const labels = session.faceLabels();
+  post({ type: 'progress', id, ...p, labels }, [labels.buffer]);
+  return p;
+}
+
+async function run(id, options) {
+  session.start(options);
+  cancelRequested = false;
+  const t0 = performance.now();
+  let lloydEnd = 0, lastPost = 0, lastPhase = '';
+  for (let more = true; more;) {
+    more = session.stepFor(SLICE_MS);
+    const p = session.progress();
+    if (!lloydEnd && p.lloydDone) lloydEnd = performance.now();
+    const now = performance.now();
+    // Operations (insert, split, merge, teleport) always show; Lloyd and smoothing steps are throttled.
+    const operation = p.phase !== lastPhase && !['lloyd', 'smooth'].includes(p.phase);
+    if (more && (operation || now - lastPost >= PROGRESS_INTERVAL_MS)) {
+      progress(id);
+      lastPost = now;
+    }
+    lastPhase = p.phase;
+    await yieldToEvents();
+    if (cancelRequested && more) {
+      session.cancel();
+      post({ type: 'cancelled', id });
+      return;
+    }
+  }
+  const end = performance.now();
+  lloydEnd ||= end;
+  const s = (a, b) => (b - a) / 1000;
+  const faceLabels = session.faceLabels(), lloydFaceLabels = session.lloydFaceLabels();
+  const projected = session.projected(), vertexErrors = session.vertexErrors(), glb = session.glb();
+  post({
+    type: 'result', id,
+    progress: session.progress(),
+    report: session.report(0, s(t0, lloydEnd), s(lloydEnd, end), s(t0, end)),
+    proxies: JSON.parse(session.proxies()),
+    faceLabels, lloydFaceLabels, projected, vertexErrors, glb,
+  }, [faceLabels.buffer, lloydFaceLabels.buffer, projected.buffer, vertexErrors.buffer, glb.buffer]);
+}
+
+self.onmessage = async ({ data }) => {
+  if (data.type === 'cancel') {
+    cancelRequested = true;
+    return;
+  }
+  try {
+    const vqsa = await ready;
+    session ??= new vqsa.Session();
+    if (data.type === 'load') loaded(data.id, session.load(new Uint8Array(data.bytes), data.name));
+    else if (data.type === 'example') loaded(data.id, session.loadExample(data.name));
+    else if (data.type === 'run') await run(data.id, data.options ?? {});
+    else throw new Error(`unknown request '${data.type}'`);
+  } catch (e) {
+    // A RuntimeError (a trap, memory exhausted mid-way) leaves the instance unusable.
+    const fatal = e instanceof WebAssembly.RuntimeError || !(e instanceof Error);
+    const message = e instanceof WebAssembly.RuntimeError ? `the computation failed (${e.message}); the engine restarts`
+      : e instanceof Error ? e.message : String(e);
+    post({ type: 'error', id: data.id, message, fatal });
+  }
+};
