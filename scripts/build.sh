@@ -17,6 +17,10 @@ mkdir -p dist/vendor/three/addons/controls dist/vendor/three/addons/libs
 cp -r web/. dist/
 cp build/wasm/wasm/vqsa.mjs build/wasm/wasm/vqsa.wasm dist/
 cp node_modules/three/build/three.module.js node_modules/three/build/three.core.js dist/vendor/three/
-cp node_modules/three/examples/jsm/controls/OrbitControls.js dist/vendor/three/addons/controls/
+# OrbitControls imports the bare specifier 'three': point it at the file, so that the
+# viewer works from any folder of any static host without an import map.
+sed "s#from 'three'#from '../../three.module.js'#" node_modules/three/examples/jsm/controls/OrbitControls.js \
+  > dist/vendor/three/addons/controls/OrbitControls.js
 cp node_modules/three/examples/jsm/libs/lil-gui.module.min.js dist/vendor/three/addons/libs/
+node scripts/example-assets.mjs dist/examples
 echo "built dist/"

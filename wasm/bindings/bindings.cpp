@@ -4,6 +4,7 @@
 #include "gltf_export.h"
 #include "mesh_io.h"
 #include "mesh_write.h"
+#include "palette.h"
 #include "report.h"
 #include "shapes.h"
 #include "examples.h"
@@ -251,6 +252,14 @@ EMSCRIPTEN_BINDINGS(vqsa) {
                              std::string names;
                              for (const char* n : example_names()) names += std::string(names.empty() ? "" : ",") + n;
                              return names;
+                         }));
+    emscripten::function("legend", emscripten::optional_override([] {
+                             nlohmann::json legend = nlohmann::json::object();
+                             for (int t = 0; t <= static_cast<int>(QuadricType::parallel_planes); ++t) {
+                                 const Vec3 c = type_color(static_cast<QuadricType>(t));
+                                 legend[type_name(static_cast<QuadricType>(t))] = {c.x(), c.y(), c.z()};
+                             }
+                             return legend.dump();
                          }));
     emscripten::function("version", emscripten::optional_override([] { return std::string(VQSA_VERSION); }));
 }

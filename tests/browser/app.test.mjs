@@ -1,0 +1,154 @@
+// The app as a user meets it, in headless Chromium: first load, drag-and-drop, bad files,
+// cancel, downloads, the embed page, and no request leaving localhost.
+import assert from 'node:assert/strict';
+import { mkdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import validator from 'gltf-validator';
+import { root } from '../node/support.mjs';
+import { guardNetwork, launchBrowser, startSite } from './support.mjs';
+
+const shots = join(root, 'build', 'screenshots');
+mkdirSync(shots, { recursive: true });
+let site, browser, page;
+const offsite = [], consoleErrors = [];
+
+async function openPage(path) {
+  const p = await browser.newPage({ viewport: { width: 1280, height: 800 }, acceptDownloads: true });
+  guardNetwork(p, site.url, offsite);
+  p.on('console', (m) => m.type() === 'error' && consoleErrors.push(`${path}: ${m.text()}`));
+  p.on('pageerror', (e) => consoleErrors.push(`${path}: ${e.message}`));
+  await p.goto(`${site.url}/${path}`);
+  return p;
+}
+
+const state = (p) => p.evaluate(() => document.querySelector('.vqsa-viewer').dataset.state);
+const waitFor = (p, wanted, timeout = 120000) =>
+  p.waitForFunction((s) => s.includes(document.querySelector('.vqsa-viewer')?.dataset.state), wanted, { timeout });
+
+// Drops a file made in the page from bytes the test server serves (or given inline).
+async function drop(p, name, { url = null, text = null } = {}) {
+  await p.evaluate(async ({ name, url, text }) => {
+    const bytes = url ? await (await fetch(url)).arrayBuffer() : new TextEncoder().encode(text);
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([bytes], name));
+    document.body.dispatchEvent(new DragEvent('dragover', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+  }, { name, url, text });
+}
+
+async function setProxies(p, n) {
+  const input = p.locator('.lil-gui .controller.number input').first();
+  await input.fill(String(n));
+  await input.press('Enter');
+}
+
+before(async () => {
+  site = await startSite();
+  browser = await launchBrowser();
+  page = await openPage('index.html');
+});
+after(async () => {
+  await browser?.close();
+  site?.server.close();
+  assert.deepEqual(offsite, [], 'requests left localhost');
+});
+
+test('the app opens with an example approximated, no console errors, a drawn canvas', async () => {
+  await waitFor(page, ['done']);
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '7');
+  const colours = await page.evaluate(() => {
+    const canvas = document.querySelector('.vqsa-canvas canvas');
+    const g = document.createElement('canvas');
+    g.width = 64, g.height = 64;
+    const c = g.getContext('2d');
+    c.drawImage(canvas, 0, 0, 64, 64);
+    const data = c.getImageData(0, 0, 64, 64).data, seen = new Set();
+    for (let i = 0; i < data.length; i += 4) seen.add(`${data[i] >> 4},${data[i + 1] >> 4},${data[i + 2] >> 4}`);
+    return seen.size;
+  });
+  assert.ok(colours > 8, `the canvas looks blank (${colours} colours)`);
+  await page.screenshot({ path: join(shots, 'app-example.png') });
+  assert.deepEqual(consoleErrors, []);
+});
+
+test('dropping fandisk.off runs to the requested count live; the GLB downloads and validates', async () => {
+  await setProxies(page, 22);
+  await page.evaluate(() => {
+    window.seen = [];
+    const viewer = document.querySelector('.vqsa-viewer');
+    new MutationObserver(() => viewer.dataset.state === 'running' && window.seen.push(Number(viewer.dataset.proxies)))
+      .observe(viewer, { attributes: true, attributeFilter: ['data-proxies'] });
+  });
+  await drop(page, 'fandisk.off', { url: '/meshes/fandisk.off' });
+  await waitFor(page, ['running']);
+  await page.screenshot({ path: join(shots, 'app-running.png') });
+  await waitFor(page, ['done']);
+  const seen = await page.evaluate(() => window.seen);
+  assert.ok(new Set(seen).size >= 4, `proxy counts seen while running: ${seen}`);
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '22');
+  await page.screenshot({ path: join(shots, 'app-fandisk.png') });
+
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-glb"]')]);
+  assert.match(download.suggestedFilename(), /^fandisk\.vqsa\.glb$/);
+  const bytes = new Uint8Array(readFileSync(await download.path()));
+  const report = await validator.validateBytes(bytes);
+  assert.equal(report.issues.numErrors, 0, JSON.stringify(report.issues.messages.filter((m) => m.severity === 0)));
+
+  const [json] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-report"]')]);
+  const parsed = JSON.parse(readFileSync(await json.path(), 'utf8'));
+  assert.equal(parsed.proxies.length, 22);
+  assert.equal(parsed.labels.length, 12946);
+});
+
+test('views: heat map and types render after a run', async () => {
+  await page.selectOption('.lil-gui select >> nth=0', 'Error heat map');
+  assert.match(await page.textContent('.vqsa-legend'), /distance to the input/);
+  await page.screenshot({ path: join(shots, 'app-heatmap.png') });
+  await page.selectOption('.lil-gui select >> nth=0', 'Partition');
+  await page.selectOption('.lil-gui select >> nth=1', 'By quadric type');
+  assert.match(await page.textContent('.vqsa-legend'), /plane/);
+  await page.hover('.vqsa-table tr[data-region="1"]');
+  assert.match(await page.textContent('.vqsa-detail'), /region 1/);
+  await page.screenshot({ path: join(shots, 'app-types.png') });
+});
+
+test('garbage and empty files show an error, and a valid file still works', async () => {
+  await drop(page, 'garbage.stl', { text: 'this is not a mesh at all, just some words'.repeat(5) });
+  await waitFor(page, ['error']);
+  assert.match(await page.textContent('[data-testid="error"]'), /garbage\.stl: /);
+  await page.screenshot({ path: join(shots, 'app-error.png') });
+  await drop(page, 'empty.off', { text: '' });
+  await page.waitForFunction(() => /empty\.off: the file is empty/.test(document.querySelector('[data-testid="error"]').textContent));
+  await setProxies(page, 5);
+  await drop(page, 'csg.off', { url: '/meshes/csg.off' });
+  await waitFor(page, ['done']);
+  assert.equal(await page.isVisible('[data-testid="error"]'), false);
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '5');
+});
+
+test('cancel mid-run, then run again', async () => {
+  await setProxies(page, 150);
+  await drop(page, 'bunny_closed.off', { url: '/meshes/bunny_closed.off' });
+  await page.waitForFunction(() => {
+    const v = document.querySelector('.vqsa-viewer');
+    return v.dataset.state === 'running' && Number(v.dataset.proxies) >= 3;
+  }, null, { timeout: 60000 });
+  await page.click('button:has-text("Cancel")');
+  await page.waitForFunction(() => document.querySelector('.vqsa-viewer').dataset.state !== 'running');
+  assert.equal(await state(page), 'idle');
+  await setProxies(page, 8);
+  await page.click('button:has-text("Run")');
+  await waitFor(page, ['done']);
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '8');
+});
+
+test('the embed page renders and runs', async () => {
+  const embed = await openPage('embed.html');
+  await waitFor(embed, ['done']);
+  await embed.waitForFunction(() => /quadrics/.test(document.getElementById('summary').textContent));
+  assert.equal(await embed.getAttribute('vqsa-viewer', 'data-proxies'), '20');
+  await embed.screenshot({ path: join(shots, 'embed.png'), fullPage: true });
+  assert.deepEqual(consoleErrors, []);
+  await embed.close();
+});

@@ -1,0 +1,616 @@
+// The vqsa viewer: load a mesh, watch proxies being inserted and boundaries smoothed,
+// inspect the quadrics, download the GLB. Everything runs in the page's own worker;
+// meshes never leave the browser.
+//
+//   import { createViewer } from './viewer.js';
+//   const viewer = createViewer(element, { proxies: 20, example: 'turned_part' });
+//   viewer.addEventListener('result', (e) => console.log(e.detail.report));
+//   await viewer.load(file);        // File/Blob/URL string/ArrayBuffer (+ name)
+//   await viewer.run({ proxies: 12 });
+//
+// The root element carries data-state (idle | loading | running | done | error) and
+// data-proxies; events: state, loaded, progress, result, error (detail: the data).
+import * as THREE from './vendor/three/three.module.js';
+import { OrbitControls } from './vendor/three/addons/controls/OrbitControls.js';
+import GUI from './vendor/three/addons/libs/lil-gui.module.min.js';
+import { VqsaClient } from './vqsa-client.js';
+
+const VIEWS = {
+  'Input mesh': 'input',
+  'Partition before smoothing': 'lloyd',
+  'Partition': 'smoothed',
+  'Projected mesh': 'projected',
+  'Error heat map': 'error',
+};
+const COLOURINGS = { 'By region': 'region', 'By quadric type': 'type' };
+const NEUTRAL = [0.72, 0.74, 0.78];
+const MAX_FILE_BYTES = 1.5 * 1024 ** 3;
+
+let stylesheetAdded = false;
+function addStylesheet() {
+  if (stylesheetAdded) return;
+  stylesheetAdded = true;
+  const link = document.createElement('link');
+  link.rel = 'stylesheet';
+  link.href = new URL('./viewer.css', import.meta.url).href;
+  document.head.append(link);
+}
+
+function element(tag, attributes = {}, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attributes)) {
+    if (k === 'text') e.textContent = v;
+    else if (k.startsWith('data')) e.setAttribute(k.replace(/[A-Z]/g, (c) => `-${c.toLowerCase()}`), v);
+    else e[k] = v;
+  }
+  e.append(...children);
+  return e;
+}
+
+// A distinct colour per region: golden-ratio hues, alternating lightness.
+function regionColour(id) {
+  const c = new THREE.Color().setHSL((id * 0.6180339887) % 1, 0.55, id % 2 ? 0.52 : 0.64, THREE.SRGBColorSpace);
+  return [c.r, c.g, c.b];
+}
+
+// Blue → cyan → yellow → red, t in [0, 1].
+function heat(t) {
+  const stops = [[0.15, 0.25, 0.8], [0.1, 0.75, 0.85], [0.95, 0.85, 0.2], [0.85, 0.1, 0.1]];
+  const x = Math.min(Math.max(t, 0), 1) * (stops.length - 1), i = Math.min(Math.floor(x), stops.length - 2), f = x - i;
+  return stops[i].map((v, k) => v + f * (stops[i + 1][k] - v));
+}
+
+const format = (x, digits = 3) => (Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(2) : x.toFixed(digits));
+const vector = (v, digits = 3) => `(${v.map((x) => (Math.abs(x) < 5e-4 ? '0' : format(x, digits))).join(', ')})`;
+
+function keyParams(p) {
+  const q = p.params ?? {};
+  switch (p.type) {
+    case 'plane': return `n ${vector(q.normal, 2)}`;
+    case 'sphere': return `r ${format(q.radius)}`;
+    case 'cylinder': return `r ${format(q.radius)}`;
+    case 'cone': return `${format((q.half_angle * 180) / Math.PI, 2)}°`;
+    default: return q.semi_axes ? `a ${vector(q.semi_axes, 2)}` : '';
+  }
+}
+
+export function createViewer(root, options = {}) {
+  addStylesheet();
+  const api = new EventTarget();
+  const settings = {
+    proxies: options.proxies ?? 20,
+    useTolerance: options.tolerance !== undefined,
+    tolerance: options.tolerance ?? 0.002,
+    rings: options.rings ?? 1,
+    lambda: options.lambda ?? 1,
+    seed: options.seed ?? 1,
+    smooth: options.smooth ?? true,
+    refit: options.refit ?? true,
+    view: 'Partition',
+    colouring: 'By region',
+    wireframe: false,
+  };
+
+  // ---- DOM -------------------------------------------------------------------------
+  root.classList.add('vqsa-viewer');
+  root.dataset.state = 'idle';
+  root.dataset.proxies = '0';
+  const fileInput = element('input', { type: 'file', accept: '.off,.obj,.ply,.stl,.gltf,.glb', hidden: true });
+  const openButton = element('button', { text: 'Open…', title: 'Open a mesh (or drop one anywhere)' });
+  const examples = element('select', { title: 'Examples', ariaLabel: 'Examples' }, element('option', { text: 'Examples…', value: '' }));
+  const runButton = element('button', { text: 'Run', className: 'vqsa-primary' });
+  const cancelButton = element('button', { text: 'Cancel', disabled: true });
+  const glbButton = element('button', { text: 'GLB', title: 'Download the result as binary glTF', disabled: true, dataTestid: 'download-glb' });
+  const reportButton = element('button', { text: 'Report', title: 'Download the JSON report', disabled: true, dataTestid: 'download-report' });
+  const title = element('span', { className: 'vqsa-title', text: 'vqsa' });
+  const meshName = element('span', { className: 'vqsa-mesh-name' });
+  const toolbar = element('div', { className: 'vqsa-toolbar' }, title, meshName, openButton, examples, runButton, cancelButton,
+    element('span', { className: 'vqsa-spacer' }), glbButton, reportButton, fileInput);
+
+  const canvasHost = element('div', { className: 'vqsa-canvas' });
+  const status = element('div', { className: 'vqsa-status' });
+  const bar = element('div', { className: 'vqsa-bar' });
+  const progress = element('div', { className: 'vqsa-progress' }, element('div', { className: 'vqsa-track' }, bar), status);
+  const errorBox = element('div', { className: 'vqsa-error', hidden: true, dataTestid: 'error', role: 'alert' });
+  const legend = element('div', { className: 'vqsa-legend' });
+  const dropHint = element('div', { className: 'vqsa-drop', text: 'Drop a mesh to approximate it' });
+  const stage = element('div', { className: 'vqsa-stage' }, canvasHost, progress, errorBox, legend, dropHint);
+
+  const plot = element('canvas', { className: 'vqsa-plot', width: 320, height: 120 });
+  const guiHost = element('div', { className: 'vqsa-gui' });
+  const detail = element('div', { className: 'vqsa-detail' });
+  const table = element('table', { className: 'vqsa-table' });
+  const tableHost = element('div', { className: 'vqsa-table-host' }, table);
+  const side = element('div', { className: 'vqsa-side' }, guiHost,
+    element('div', { className: 'vqsa-caption', text: 'RMS error against proxy count' }), plot,
+    element('div', { className: 'vqsa-caption', text: 'Proxies' }), tableHost, detail);
+  root.replaceChildren(toolbar, element('div', { className: 'vqsa-body' }, stage, side));
+
+  // ---- Three.js ----------------------------------------------------------------------
+  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+  canvasHost.append(renderer.domElement);
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xf4f5f7);
+  const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  controls.enableDamping = true;
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.6));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+  sun.position.set(1, 2, 1.5);
+  camera.add(sun);
+  scene.add(camera);
+  const material = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.75, metalness: 0, side: THREE.DoubleSide,
+    flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
+  const wireMaterial = new THREE.MeshBasicMaterial({ color: 0x20242c, wireframe: true, transparent: true, opacity: 0.25 });
+  const surface = new THREE.Mesh(new THREE.BufferGeometry(), material);
+  const wire = new THREE.Mesh(surface.geometry, wireMaterial);
+  wire.visible = false;
+  const model = new THREE.Group();
+  model.add(surface, wire);
+  scene.add(model);
+
+  const resize = () => {
+    const w = canvasHost.clientWidth || 1, h = canvasHost.clientHeight || 1;
+    renderer.setSize(w, h, false);
+    camera.aspect = w / h;
+    camera.updateProjectionMatrix();
+  };
+  const observer = new ResizeObserver(resize);
+  observer.observe(canvasHost);
+  let alive = true;
+  renderer.setAnimationLoop(() => {
+    if (!alive) return;
+    controls.update();
+    renderer.render(scene, camera);
+  });
+
+  // ---- state -------------------------------------------------------------------------
+  let client = new VqsaClient();
+  let mesh = null;            // {positions, triangles, sourceFaces, info, name}
+  let live = null;            // labels during a run
+  let result = null;          // the last result
+  let legendColours = {};
+  let highlighted = -1;
+  let history = [];           // [proxies, rms] during the run
+  let busy = false;
+
+  function setState(state) {
+    root.dataset.state = state;
+    runButton.disabled = !mesh || state === 'running' || state === 'loading';
+    cancelButton.disabled = state !== 'running';
+    glbButton.disabled = reportButton.disabled = !(state === 'done' && result);
+    api.dispatchEvent(new CustomEvent('state', { detail: state }));
+  }
+
+  function showError(message) {
+    errorBox.textContent = message;
+    errorBox.hidden = false;
+    setState('error');
+    api.dispatchEvent(new CustomEvent('error', { detail: message }));
+  }
+
+  function clearError() {
+    errorBox.hidden = true;
+    errorBox.textContent = '';
+  }
+
+  function setStatus(text, fraction = null) {
+    status.textContent = text;
+    bar.style.width = fraction === null ? '0' : `${Math.round(100 * Math.min(Math.max(fraction, 0), 1))}%`;
+    bar.classList.toggle('vqsa-indeterminate', fraction === null && root.dataset.state === 'running');
+  }
+
+  // ---- geometry and colours -------------------------------------------------------------
+  function buildGeometry(positions) {
+    const t = mesh.triangles, n = t.length / 3;
+    const xyz = new Float32Array(9 * n);
+    for (let f = 0; f < n; ++f)
+      for (let k = 0; k < 3; ++k) {
+        const v = t[3 * f + k];
+        xyz.set(positions.subarray(3 * v, 3 * v + 3), 9 * f + 3 * k);
+      }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(xyz, 3));
+    geometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(9 * n), 3));
+    geometry.computeVertexNormals();
+    geometry.computeBoundingSphere();
+    return geometry;
+  }
+
+  function useGeometry(geometry) {
+    surface.geometry.dispose();
+    surface.geometry = wire.geometry = geometry;
+  }
+
+  function frame() {
+    const sphere = surface.geometry.boundingSphere;
+    const distance = sphere.radius / Math.sin((camera.fov * Math.PI) / 360) * 1.15;
+    controls.target.copy(sphere.center);
+    camera.position.copy(sphere.center).add(new THREE.Vector3(0.55, 0.45, 0.75).normalize().multiplyScalar(distance));
+    camera.near = distance / 100;
+    camera.far = distance * 10;
+    camera.updateProjectionMatrix();
+  }
+
+  function proxyType(region) {
+    return result?.proxies?.[region]?.type;
+  }
+
+  function faceColour(region) {
+    if (region < 0) return NEUTRAL;
+    let c = settings.colouring === 'By quadric type' && proxyType(region) ? legendColours[proxyType(region)] ?? NEUTRAL
+      : regionColour(region);
+    if (region === highlighted) c = c.map((v) => v + (1 - v) * 0.55);
+    return c;
+  }
+
+  function paint() {
+    if (!mesh) return;
+    const colour = surface.geometry.getAttribute('color');
+    const array = colour.array, n = mesh.triangles.length / 3;
+    const view = VIEWS[settings.view];
+    const labels = live ?? (result && (view === 'lloyd' ? result.lloydFaceLabels : result.faceLabels));
+    if (view === 'error' && result?.vertexErrors?.length && !live) {
+      const errors = result.vertexErrors, t = mesh.triangles;
+      const scale = heatScale();
+      for (let f = 0; f < n; ++f)
+        for (let k = 0; k < 3; ++k) array.set(heat(errors[t[3 * f + k]] / scale), 9 * f + 3 * k);
+    } else {
+      for (let f = 0; f < n; ++f) {
+        const c = view === 'input' || !labels ? NEUTRAL : faceColour(labels[f]);
+        array.set(c, 9 * f);
+        array.set(c, 9 * f + 3);
+        array.set(c, 9 * f + 6);
+      }
+    }
+    colour.needsUpdate = true;
+    drawLegend();
+  }
+
+  function heatScale() {
+    const e = result.vertexErrors;
+    let max = 0;
+    for (let i = 0; i < e.length; ++i) max = Math.max(max, e[i]);
+    return max > 0 ? max : 1;
+  }
+
+  function showView() {
+    if (!mesh) return;
+    const view = VIEWS[settings.view];
+    const projected = (view === 'projected' || view === 'error') && result?.projected?.length && !live;
+    const wanted = projected ? 'projected' : 'input';
+    if (surface.userData.kind !== wanted) {
+      useGeometry(buildGeometry(projected ? result.projected : mesh.positions));
+      surface.userData.kind = wanted;
+    }
+    paint();
+  }
+
+  function drawLegend() {
+    legend.replaceChildren();
+    const view = VIEWS[settings.view];
+    if (view === 'error' && result?.vertexErrors?.length && !live) {
+      const ramp = element('div', { className: 'vqsa-ramp' });
+      ramp.style.background = `linear-gradient(to right, ${[0, 1 / 3, 2 / 3, 1].map((t) =>
+        `rgb(${heat(t).map((v) => Math.round(255 * Math.pow(v, 1 / 2.2))).join(',')})`).join(',')})`;
+      legend.append(element('div', { text: 'distance to the input / bbox diagonal' }), ramp,
+        element('div', { className: 'vqsa-ramp-labels' }, element('span', { text: '0' }), element('span', { text: format(heatScale()) })));
+      return;
+    }
+    if (settings.colouring !== 'By quadric type' || !result) return;
+    const types = [...new Set(result.proxies.map((p) => p.type))];
+    for (const type of types) {
+      const swatch = element('span', { className: 'vqsa-swatch' });
+      swatch.style.background = `rgb(${legendColours[type].map((v) => Math.round(255 * Math.pow(v, 1 / 2.2))).join(',')})`;
+      legend.append(element('div', { className: 'vqsa-legend-row' }, swatch, element('span', { text: type.replaceAll('_', ' ') })));
+    }
+  }
+
+  // ---- plot, table, detail -------------------------------------------------------------
+  function drawPlot() {
+    const g = plot.getContext('2d'), w = plot.width, h = plot.height, pad = 26;
+    g.clearRect(0, 0, w, h);
+    g.fillStyle = '#fff';
+    g.fillRect(0, 0, w, h);
+    g.strokeStyle = '#ccd';
+    g.strokeRect(pad, 6, w - pad - 6, h - pad);
+    const points = history.filter(([, rms]) => rms > 0);
+    if (points.length < 2) return;
+    const maxN = Math.max(...points.map(([n]) => n)), logs = points.map(([, r]) => Math.log10(r));
+    const lo = Math.floor(Math.min(...logs)), hi = Math.ceil(Math.max(...logs)) + (Math.min(...logs) === Math.max(...logs) ? 1 : 0);
+    const x = (n) => pad + ((n - 1) / Math.max(1, maxN - 1)) * (w - pad - 8);
+    const y = (r) => 6 + ((hi - Math.log10(r)) / (hi - lo)) * (h - pad - 2);
+    g.fillStyle = '#556';
+    g.font = '10px sans-serif';
+    for (let e = lo; e <= hi; ++e) g.fillText(`1e${e}`, 0, y(10 ** e) + 3);
+    g.fillText('proxies', w / 2 - 15, h - 4);
+    g.fillText(String(maxN), w - 22, h - 14);
+    g.strokeStyle = '#2864c8';
+    g.lineWidth = 1.5;
+    g.beginPath();
+    points.forEach(([n, r], i) => (i ? g.lineTo(x(n), y(r)) : g.moveTo(x(n), y(r))));
+    g.stroke();
+  }
+
+  function fillTable() {
+    table.replaceChildren(element('tr', {}, ...['#', 'type', 'parameters', 'area %', 'RMS'].map((t) => element('th', { text: t }))));
+    if (!result) return;
+    const total = result.proxies.reduce((s, p) => s + p.area, 0);
+    for (const p of result.proxies) {
+      const swatch = element('span', { className: 'vqsa-swatch' });
+      const c = settings.colouring === 'By quadric type' ? legendColours[p.type] : regionColour(p.id);
+      swatch.style.background = `rgb(${c.map((v) => Math.round(255 * Math.pow(v, 1 / 2.2))).join(',')})`;
+      const row = element('tr', { dataRegion: p.id },
+        element('td', {}, swatch, String(p.id)), element('td', { text: p.type.replaceAll('_', ' ') }),
+        element('td', { text: keyParams(p) }), element('td', { text: ((100 * p.area) / total).toFixed(1) }),
+        element('td', { text: format(p.metrics?.rms ?? p.rms_error) }));
+      row.addEventListener('mouseenter', () => highlight(p.id));
+      row.addEventListener('click', () => highlight(p.id, true));
+      table.append(row);
+    }
+  }
+
+  let pinned = false;
+  function highlight(region, pin = false) {
+    if (pinned && !pin) return;
+    if (pin) pinned = region >= 0 && !(pinned && highlighted === region);
+    if (highlighted === region && !pin) return;
+    highlighted = region;
+    for (const row of table.querySelectorAll('tr[data-region]')) row.classList.toggle('vqsa-selected', Number(row.dataset.region) === region);
+    const p = result?.proxies?.[region];
+    detail.replaceChildren();
+    if (p) {
+      const lines = [`region ${p.id}: ${p.type.replaceAll('_', ' ')}${p.special_fit ? ' (refitted)' : ''}`,
+        `${p.faces} faces, RMS ${format(p.metrics?.rms ?? 0)} of the diagonal`,
+        ...Object.entries(p.params).map(([k, v]) => `${k}: ${Array.isArray(v[0]) ? v.map(vector).join(' ') : Array.isArray(v) ? vector(v) : format(v)}`),
+        `f = ${p.coefficients.map((c) => format(c)).join(', ')}`];
+      detail.append(...lines.map((l) => element('div', { text: l })));
+    }
+    paint();
+  }
+
+  // ---- picking -----------------------------------------------------------------------
+  const raycaster = new THREE.Raycaster(), pointer = new THREE.Vector2();
+  function pick(event) {
+    if (!result || live || !mesh) return -1;
+    const rect = renderer.domElement.getBoundingClientRect();
+    pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
+    raycaster.setFromCamera(pointer, camera);
+    const hit = raycaster.intersectObject(surface)[0];
+    const labels = VIEWS[settings.view] === 'lloyd' ? result.lloydFaceLabels : result.faceLabels;
+    return hit ? labels[hit.faceIndex] : -1;
+  }
+  let pointerDown = null;
+  renderer.domElement.addEventListener('pointerdown', (e) => { pointerDown = [e.clientX, e.clientY]; });
+  renderer.domElement.addEventListener('pointerup', (e) => {
+    if (pointerDown && Math.hypot(e.clientX - pointerDown[0], e.clientY - pointerDown[1]) < 4) highlight(pick(e), true);
+  });
+  renderer.domElement.addEventListener('pointermove', (e) => {
+    if (e.buttons === 0 && result && !live) highlight(pick(e));
+  });
+
+  // ---- controls ----------------------------------------------------------------------
+  const gui = new GUI({ container: guiHost, title: 'Approximation' });
+  gui.add(settings, 'proxies', 1, 200, 1).name('proxies');
+  gui.add(settings, 'useTolerance').name('stop on tolerance');
+  gui.add(settings, 'tolerance', 1e-4, 0.05, 1e-4).name('tolerance (RMS)');
+  gui.add(settings, 'rings', 1, 5, 1).name('smoothing rings');
+  gui.add(settings, 'lambda', 0, 20, 0.1).name('smoothing λ');
+  gui.add(settings, 'seed', 0, 1000, 1).name('seed');
+  gui.add(settings, 'smooth').name('smooth boundaries');
+  gui.add(settings, 'refit').name('refit special types');
+  const display = gui.addFolder('Display');
+  display.add(settings, 'view', Object.keys(VIEWS)).name('view').onChange(showView);
+  display.add(settings, 'colouring', Object.keys(COLOURINGS)).name('colour').onChange(() => { paint(); fillTable(); });
+  display.add(settings, 'wireframe').name('wireframe').onChange((v) => { wire.visible = v; });
+
+  // ---- loading -----------------------------------------------------------------------
+  async function receiveMesh(loaded, name) {
+    mesh = { ...loaded, name };
+    legendColours = loaded.legend;
+    if (examples.options.length === 1)
+      for (const e of [...loaded.examples, 'bunny']) examples.append(element('option', { value: e, text: e.replaceAll('_', ' ') }));
+    result = null;
+    live = null;
+    history = [];
+    highlighted = -1;
+    pinned = false;
+    fillTable();
+    detail.replaceChildren();
+    drawPlot();
+    surface.userData.kind = 'input';
+    useGeometry(buildGeometry(mesh.positions));
+    frame();
+    paint();
+    meshName.textContent = `${name} · ${loaded.info.faces.toLocaleString()} faces`;
+    setStatus(`${name}: ${loaded.info.faces.toLocaleString()} faces, ${loaded.info.vertices.toLocaleString()} vertices`);
+    api.dispatchEvent(new CustomEvent('loaded', { detail: loaded.info }));
+  }
+
+  async function guarded(work) {
+    if (busy) {
+      client.cancel();
+      await new Promise((r) => setTimeout(r, 0));
+    }
+    busy = true;
+    try {
+      return await work();
+    } catch (e) {
+      if (e.name === 'AbortError') {
+        live = null;
+        setState(result ? 'done' : 'idle');
+        setStatus('cancelled');
+        showView();
+        return null;
+      }
+      live = null;
+      showError(e.message);
+      showView();
+      return null;
+    } finally {
+      busy = false;
+    }
+  }
+
+  async function load(source, name) {
+    return guarded(async () => {
+      clearError();
+      setState('loading');
+      let bytes = source, fileName = name;
+      if (typeof source === 'string') {
+        const url = new URL(source, document.baseURI);
+        fileName ??= decodeURIComponent(url.pathname.split('/').pop());
+        setStatus(`downloading ${fileName}…`);
+        const response = await fetch(url);
+        if (!response.ok) throw new Error(`${fileName}: could not fetch it (${response.status})`);
+        bytes = await response.arrayBuffer();
+      } else if (source instanceof Blob) {
+        fileName ??= source.name;
+        if (source.size > MAX_FILE_BYTES) throw new Error(`${fileName}: ${(source.size / 1024 ** 3).toFixed(1)} GB is more than this browser can hold`);
+        bytes = await source.arrayBuffer();
+      }
+      setStatus(`reading ${fileName}…`);
+      await receiveMesh(await client.load(bytes, fileName), fileName);
+      setState('idle');
+      return mesh.info;
+    });
+  }
+
+  async function loadExample(name) {
+    if (name === 'bunny') return load(new URL('./examples/bunny.off', import.meta.url).href, 'bunny.off');
+    return guarded(async () => {
+      clearError();
+      setState('loading');
+      await receiveMesh(await client.loadExample(name), name);
+      setState('idle');
+      return mesh.info;
+    });
+  }
+
+  async function run(overrides = {}) {
+    Object.assign(settings, overrides);
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    return guarded(async () => {
+      if (!mesh) throw new Error('open a mesh first');
+      clearError();
+      result = null;
+      history = [];
+      highlighted = -1;
+      pinned = false;
+      fillTable();
+      detail.replaceChildren();
+      setState('running');
+      const target = settings.useTolerance ? 0 : settings.proxies;
+      const runOptions = { proxies: target, rings: settings.rings, lambda: settings.lambda, seed: settings.seed,
+        smooth: settings.smooth, refit: settings.refit };
+      if (settings.useTolerance) runOptions.tolerance = settings.tolerance;
+      surface.userData.kind = null;
+      live = new Int32Array(mesh.triangles.length / 3).fill(-1);
+      showView();
+      const done = await client.run(runOptions, {
+        onProgress: (p) => {
+          live = p.labels;
+          root.dataset.proxies = String(p.proxies);
+          if (p.phase !== 'smooth' && !p.lloydDone) history.push([p.proxies, p.rms]);
+          const fraction = target ? Math.min(p.proxies / target, 1) * (p.lloydDone ? 1 : 0.9) : null;
+          setStatus(`${p.phase} · ${p.proxies} proxies · iteration ${p.iteration} · RMS ${format(p.rms)}`, fraction);
+          paint();
+          drawPlot();
+          api.dispatchEvent(new CustomEvent('progress', { detail: p }));
+        },
+      });
+      live = null;
+      result = done;
+      result.reportObject = JSON.parse(done.report);
+      root.dataset.proxies = String(done.proxies.length);
+      const metrics = result.reportObject.metrics;
+      setStatus(`${done.proxies.length} proxies · RMS ${format(result.reportObject.rms_error_relative)} of the size` +
+        (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : ''), 1);
+      history.push([done.proxies.length, result.reportObject.rms_error_relative]);
+      drawPlot();
+      fillTable();
+      showView();
+      setState('done');
+      api.dispatchEvent(new CustomEvent('result', { detail: result.reportObject }));
+      return result.reportObject;
+    });
+  }
+
+  function cancel() {
+    client.cancel();
+  }
+
+  function download(bytes, name, type) {
+    const url = URL.createObjectURL(new Blob([bytes], { type }));
+    const a = element('a', { href: url, download: name });
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(url), 1000);
+  }
+  const baseName = () => (mesh?.name ?? 'mesh').replace(/\.[^.]*$/, '');
+
+  openButton.addEventListener('click', () => fileInput.click());
+  fileInput.addEventListener('change', () => {
+    if (fileInput.files[0]) load(fileInput.files[0]).then(() => root.dataset.state !== 'error' && run());
+    fileInput.value = '';
+  });
+  examples.addEventListener('change', () => {
+    const name = examples.value;
+    examples.value = '';
+    if (name) loadExample(name).then(() => root.dataset.state !== 'error' && run());
+  });
+  runButton.addEventListener('click', () => run());
+  cancelButton.addEventListener('click', cancel);
+  glbButton.addEventListener('click', () => download(result.glb, `${baseName()}.vqsa.glb`, 'model/gltf-binary'));
+  reportButton.addEventListener('click', () => download(result.report, `${baseName()}.vqsa.json`, 'application/json'));
+
+  // Drops anywhere on the page (the app) or on the viewer (embedded).
+  const dropTarget = options.dropTarget ?? root;
+  const onDragOver = (e) => {
+    if (![...(e.dataTransfer?.types ?? [])].includes('Files')) return;
+    e.preventDefault();
+    root.classList.add('vqsa-dragging');
+  };
+  const onDragLeave = (e) => {
+    if (e.target === dropTarget || !dropTarget.contains(e.relatedTarget)) root.classList.remove('vqsa-dragging');
+  };
+  const onDrop = (e) => {
+    root.classList.remove('vqsa-dragging');
+    const file = e.dataTransfer?.files?.[0];
+    if (!file) return;
+    e.preventDefault();
+    load(file).then(() => root.dataset.state !== 'error' && run());
+  };
+  dropTarget.addEventListener('dragover', onDragOver);
+  dropTarget.addEventListener('dragleave', onDragLeave);
+  dropTarget.addEventListener('drop', onDrop);
+
+  drawPlot();
+  fillTable();
+  setState('idle');
+
+  Object.assign(api, {
+    element: root,
+    load, loadExample, run, cancel,
+    get state() { return root.dataset.state; },
+    get result() { return result?.reportObject ?? null; },
+    destroy() {
+      alive = false;
+      observer.disconnect();
+      renderer.setAnimationLoop(null);
+      renderer.dispose();
+      gui.destroy();
+      client.terminate();
+      dropTarget.removeEventListener('dragover', onDragOver);
+      dropTarget.removeEventListener('dragleave', onDragLeave);
+      dropTarget.removeEventListener('drop', onDrop);
+      root.replaceChildren();
+    },
+  });
+
+  if (options.src) load(options.src).then(() => root.dataset.state !== 'error' && run());
+  else if (options.example) loadExample(options.example).then(() => root.dataset.state !== 'error' && run());
+  return api;
+}
