@@ -3,6 +3,8 @@
 # Non-interactive, so it runs the same in CI and on a fresh machine.
 #   --wasm      also Emscripten (the WASM build)
 #   --browser   also Chromium (the browser tests)
+#   --fuzz      also clang and its sanitizer/libFuzzer runtimes
+#   --cgal      also CGAL (the planar VSA peer of the benchmark; never needed by the app or the tests)
 set -euo pipefail
 
 packages=(cmake g++ make libgtest-dev libeigen3-dev libtinygltf-dev nlohmann-json3-dev libboost-graph-dev)
@@ -10,6 +12,8 @@ for flag in "$@"; do
   case "$flag" in
     --wasm) packages+=(emscripten) ;;
     --browser) packages+=(chromium) ;;
+    --cgal) packages+=(libcgal-dev) ;;
+    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     *) echo "ensure-deps: unknown flag $flag" >&2; exit 2 ;;
   esac
 done

@@ -143,6 +143,25 @@ test('cancel mid-run, then run again', async () => {
   assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '8');
 });
 
+test('20 rapid run/cancel cycles leave a consistent, usable app', async () => {
+  await page.click('.vqsa-toolbar select');
+  await page.selectOption('.vqsa-toolbar select', 'axle');
+  await waitFor(page, ['done']);
+  await setProxies(page, 40);
+  for (let i = 0; i < 20; ++i) {
+    await page.click('button:has-text("Run")');
+    await page.waitForTimeout(i % 4 === 0 ? 0 : 30 * (i % 5));
+    await page.click('button:has-text("Cancel")', { force: true });
+    await page.waitForFunction(() => document.querySelector('.vqsa-viewer').dataset.state !== 'running', null, { timeout: 30000 });
+  }
+  assert.ok(['idle', 'done'].includes(await state(page)));
+  await setProxies(page, 6);
+  await page.click('button:has-text("Run")');
+  await waitFor(page, ['done']);
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '6');
+  assert.equal(await page.isVisible('[data-testid="error"]'), false);
+});
+
 test('the embed page renders and runs', async () => {
   const embed = await openPage('embed.html');
   await waitFor(embed, ['done']);

@@ -10,7 +10,8 @@ namespace vqsa {
 
 std::vector<const char*> example_names();
 
-// Throws std::invalid_argument for an unknown name.
+// `name`, or `name:FACES` for about FACES triangles (the resolution scales; at most
+// 20 million). Throws std::invalid_argument for an unknown name or a bad size.
 Mesh example_mesh(const std::string& name);
 
 }  // namespace vqsa

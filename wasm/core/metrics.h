@@ -24,6 +24,15 @@ struct Metrics {
     std::vector<double> vertex_distance;
 };
 
+// Symmetric RMS and maximum distance between two unrelated surfaces, over a's
+// bounding-box diagonal (to measure another method's output with the same code).
+struct SurfaceDistance {
+    double rms = 0, hausdorff = 0;
+};
+SurfaceDistance compare_surfaces(const std::vector<Vec3>& a_points, const std::vector<Triangle>& a_triangles,
+                                 const std::vector<Vec3>& b_points, const std::vector<Triangle>& b_triangles,
+                                 const MetricsOptions& options = {});
+
 // `a` and `b` share triangles and labels (b is a's projection); `labels` per triangle,
 // `regions` labels in all (labels < 0 are left out of the per-region figures).
 Metrics measure(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const std::vector<Triangle>& triangles,

@@ -1,0 +1,68 @@
+// The bad-input corpus through the WASM API: the same outcomes as natively, and a
+// session that stays usable after every failure; options out of range are refused.
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { test } from 'node:test';
+import { loadVqsa } from '../../wasm/node/load.mjs';
+import { root } from './support.mjs';
+
+const corpus = join(root, 'tests', 'bad_inputs');
+const expected = JSON.parse(readFileSync(join(corpus, 'expected.json'), 'utf8'));
+const vqsa = await loadVqsa();
+
+const finite = (value) => (typeof value === 'number' ? Number.isFinite(value)
+  : value && typeof value === 'object' ? Object.values(value).every(finite) : true);
+
+test('every corpus file fails with its message or runs to finite results', () => {
+  const session = new vqsa.Session();
+  for (const [name, want] of Object.entries(expected)) {
+    const bytes = readFileSync(join(corpus, name));
+    if (want.error !== undefined) {
+      assert.throws(() => session.load(bytes, name), (e) => e instanceof Error && e.message.startsWith(`${name}: `) &&
+        e.message.toLowerCase().includes(want.error), name);
+      continue;
+    }
+    const info = session.load(bytes, name);
+    assert.equal(info.facesUsed, want.faces_used, name);
+    session.start({ proxies: want.request });
+    while (session.stepFor(100)) {}
+    const report = JSON.parse(session.report(0, 0, 0, 0));
+    assert.equal(report.proxies.length, want.proxies, name);
+    assert.ok(finite(report), `${name}: a non-finite number in the report`);
+    assert.ok(session.glb().length > 100, name);
+  }
+  session.delete();
+});
+
+test('options out of range are refused with a message', () => {
+  const session = new vqsa.Session();
+  session.loadExample('capsule');
+  assert.throws(() => session.start({ proxies: 0 }), /give a proxy count/);
+  assert.throws(() => session.start({ tolerance: -1 }), /tolerance/);
+  assert.throws(() => session.start({ proxies: 1e6 }), /exceeds the number of faces/);
+  assert.throws(() => session.start({ proxies: 1e7 }), /at most 1000000/);
+  assert.throws(() => session.start({ proxies: 2.5 }), /integer/);
+  assert.throws(() => session.start({ proxies: '3' }), /must be a number/);
+  assert.throws(() => session.start({ proxies: 3, rings: 0 }), /rings/);
+  session.start({ proxies: 3 });
+  while (session.stepFor(100)) {}
+  assert.equal(JSON.parse(session.proxies()).length, 3);
+  session.delete();
+});
+
+test('100 runs in one instance do not grow its memory', () => {
+  const session = new vqsa.Session();
+  const run = () => {
+    session.loadExample('capsule');
+    session.start({ proxies: 4 });
+    while (session.stepFor(100)) {}
+    session.glb();
+    session.labels();
+  };
+  for (let i = 0; i < 5; ++i) run();  // the allocator settles
+  const before = vqsa.HEAP8.buffer.byteLength;
+  for (let i = 0; i < 100; ++i) run();
+  assert.equal(vqsa.HEAP8.buffer.byteLength, before, 'the WASM heap grew over 100 runs');
+  session.delete();
+});

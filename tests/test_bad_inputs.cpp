@@ -1,0 +1,120 @@
+// The bad-input corpus (tests/bad_inputs): each file fails with a clear message or runs
+// to finite results. The WASM build is held to the same file in tests/node.
+#include "engine.h"
+#include "gltf_export.h"
+#include "mesh_io.h"
+#include "report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+using namespace vqsa;
+
+namespace {
+
+const std::string corpus = VQSA_BAD_INPUTS;
+
+bool all_finite(const nlohmann::json& j) {
+    if (j.is_number_float()) return std::isfinite(j.get<double>());
+    if (j.is_array() || j.is_object()) {
+        for (const auto& v : j)
+            if (!all_finite(v)) return false;
+    }
+    return true;
+}
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+}  // namespace
+
+TEST(BadInputs, EachFailsClearlyOrRunsToFiniteResults) {
+    std::ifstream in(corpus + "/expected.json");
+    ASSERT_TRUE(in) << corpus;
+    const nlohmann::json expected = nlohmann::json::parse(in);
+    ASSERT_GE(expected.size(), 20u);
+    for (const auto& [name, want] : expected.items()) {
+        SCOPED_TRACE(name);
+        const std::string path = corpus + "/" + name;
+        if (want.contains("error")) {
+            try {
+                read_mesh_file(path);
+                ADD_FAILURE() << "read without error";
+            } catch (const MeshReadError& e) {
+                const std::string message = e.what();
+                EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+                EXPECT_NE(lower(message).find(want["error"].get<std::string>()), std::string::npos) << message;
+            }
+            continue;
+        }
+        const Mesh mesh = read_mesh_file(path);
+        EXPECT_EQ(static_cast<int>(mesh.triangles.size()), want["faces_used"].get<int>());
+        EngineOptions options;
+        options.proxies = want["request"];
+        Engine engine(mesh, options);
+        engine.run();
+        EXPECT_EQ(static_cast<int>(engine.proxies().size()), want["proxies"].get<int>());
+        const nlohmann::json report = make_report(mesh, engine, {});
+        EXPECT_TRUE(all_finite(report)) << report.dump().substr(0, 400);
+        ASSERT_TRUE(engine.metrics().has_value());
+        for (int l : engine.face_labels()) ASSERT_GE(l, 0);
+        for (const Vec3& p : engine.projected_vertices()) ASSERT_TRUE(p.allFinite());
+        EXPECT_GT(export_glb(mesh, engine).size(), 100u);
+    }
+}
+
+TEST(BadInputs, FarAndTinyMeshesGiveTheSameShapeAtTheirScale) {
+    const Mesh far = read_mesh_file(corpus + "/far_away.off"), tiny = read_mesh_file(corpus + "/tiny.off");
+    EngineOptions options;
+    options.proxies = 3;
+    Engine a(far, options), b(tiny, options);
+    a.run();
+    b.run();
+    for (const auto* e : {&a, &b}) {
+        int planes = 0, cylinders = 0;
+        for (int i = 0; i < 3; ++i) {
+            const Classification c = e->classification(i);
+            planes += c.type == QuadricType::plane;
+            if (c.type == QuadricType::cylinder) {
+                ++cylinders;
+                const double scale = e == &a ? 1.0 : 1e-6;
+                // A 32-gon inscribed in the unit circle: the best cylinder sits between apothem and radius.
+                EXPECT_NEAR(c.radius / scale, 0.99, 0.012);
+            }
+        }
+        EXPECT_EQ(planes, 2);
+        EXPECT_EQ(cylinders, 1);
+    }
+}
+
+TEST(BadInputs, OptionsOutOfRangeAreRejected) {
+    const Mesh mesh = read_mesh_file(corpus + "/far_away.off");
+    auto message = [&](EngineOptions o) {
+        try {
+            Engine e(mesh, o);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EngineOptions zero;
+    EXPECT_NE(message(zero).find("give a proxy count"), std::string::npos);
+    EngineOptions negative;
+    negative.tolerance = -0.1;
+    EXPECT_NE(message(negative).find("tolerance"), std::string::npos);
+    EngineOptions huge;
+    huge.proxies = 1000000;
+    EXPECT_NE(message(huge).find("exceeds the number of faces"), std::string::npos);
+    EngineOptions rings;
+    rings.proxies = 3;
+    rings.smoothing.rings = 0;
+    EXPECT_NE(message(rings).find("rings"), std::string::npos);
+    EngineOptions lambda;
+    lambda.proxies = 3;
+    lambda.smoothing.lambda = std::nan("");
+    EXPECT_NE(message(lambda).find("lambda"), std::string::npos);
+}
