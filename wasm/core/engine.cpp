@@ -342,7 +342,7 @@ void Engine::decide() {
         if (teleports_left_ > 0) {
             snapshot_ = {labels_, errors_, proxies_, energy_};
             if (merge_cheapest(true)) {
-                insert_farthest();
+                insert_farthest(1);
                 --teleports_left_;
                 teleport_pending_ = true;
                 return start_stage(Phase::teleport);
@@ -356,19 +356,24 @@ void Engine::decide() {
         --splits_left_;
         return start_stage(Phase::split);
     }
-    insert_farthest();
+    // Far from the target, several proxies go in at once (into distinct regions): Lloyd
+    // then runs once per batch rather than once per proxy.
+    int batch = std::max(1, static_cast<int>(count * options_.insertion_batch));
+    if (target > 0) batch = std::min(batch, target - count);
+    insert_farthest(batch);
     if (static_cast<int>(proxies_.size()) == count) return end_lloyd(StopReason::exhausted);
     start_stage(Phase::insert);
 }
 
-void Engine::insert_farthest() {
-    // The region of largest total error, and in it the face of largest error.
+void Engine::insert_farthest(int count) {
+    // The regions of largest total error, and in each the face of largest error.
     std::vector<int> order(proxies_.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
     std::sort(order.begin(), order.end(), [&](int a, int b) {
         return proxies_[a].error != proxies_[b].error ? proxies_[a].error > proxies_[b].error : a < b;
     });
     for (int region : order) {
+        if (count == 0) return;
         if (proxies_[region].faces < 2 || !(proxies_[region].error > 0)) continue;
         // The worst face counted with its neighbours: a lone outlier face (a sliver, a
         // spike) would seed a proxy that never grows.
@@ -383,7 +388,7 @@ void Engine::insert_farthest() {
             if (e > worst_error) worst_error = e, worst = f;
         }
         add_proxy(worst);
-        return;
+        --count;
     }
 }
 

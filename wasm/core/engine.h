@@ -31,6 +31,9 @@ struct EngineOptions {
     // `stage_iterations` iterations, before the next proxy operation.
     double convergence = 3e-3;
     int stage_iterations = 4;
+    // Proxies inserted at once while growing, as a fraction of the current count (at
+    // least one): 0 inserts one at a time, as the paper does.
+    double insertion_batch = 0.25;
     // Merge-and-reinsert attempts once the proxy count is reached: each is kept only
     // if it lowers the energy, and the first that does not stops them.
     int teleports = 4;
@@ -143,7 +146,7 @@ private:
     // Both skip the regions whose faces did not change since their last fit.
     void refit(const std::vector<char>& changed);
     void evaluate(const std::vector<char>* changed = nullptr);
-    void insert_farthest();
+    void insert_farthest(int count);  // into the `count` regions of largest error
     bool split_invalid();
     // The adjacent pair whose union fit costs least; `gated`: only if merging pays.
     bool merge_cheapest(bool gated);
