@@ -51,6 +51,20 @@ test('options out of range are refused with a message', () => {
   session.delete();
 });
 
+test('a mesh too large for the 4 GB of wasm32 fails with a clear message, and the session goes on', () => {
+  const session = new vqsa.Session();
+  assert.throws(() => {
+    session.loadExample('turned_part:20000000');
+    session.start({ proxies: 50 });
+    while (session.stepFor(1000)) {}
+  }, /out of memory: the mesh is too large for this browser/);
+  session.loadExample('capsule');
+  session.start({ proxies: 3 });
+  while (session.stepFor(100)) {}
+  assert.equal(JSON.parse(session.proxies()).length, 3);
+  session.delete();
+});
+
 test('100 runs in one instance do not grow its memory', () => {
   const session = new vqsa.Session();
   const run = () => {

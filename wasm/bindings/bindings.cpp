@@ -29,6 +29,8 @@ auto guarded(F&& f) -> decltype(f()) {
         return f();
     } catch (const std::bad_alloc&) {
         throw_js("out of memory: the mesh is too large for this browser");
+    } catch (const std::length_error&) {  // a container past wasm32's 4 GB
+        throw_js("out of memory: the mesh is too large for this browser");
     } catch (const std::exception& e) {
         throw_js(e.what());
     }

@@ -39,6 +39,8 @@ Mesh read(std::string_view name, std::string_view bytes, const std::string& base
         return build_mesh(soup);
     } catch (const std::bad_alloc&) {
         throw MeshReadError(std::string(name) + ": not enough memory to read this mesh");
+    } catch (const std::length_error&) {  // a container past its maximum size (wasm32: 4 GB)
+        throw MeshReadError(std::string(name) + ": not enough memory to read this mesh");
     } catch (const std::exception& e) {
         throw MeshReadError(std::string(name) + ": " + e.what());
     }
