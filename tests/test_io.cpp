@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -287,4 +288,27 @@ TEST(Readers, BadInputGivesAClearErrorNamingTheFile) {
     } catch (const MeshReadError& e) {
         EXPECT_NE(std::string(e.what()).find("cannot"), std::string::npos) << e.what();
     }
+}
+
+// Inputs the fuzzers found (tests/fuzz/regressions): each must read or fail cleanly, fast.
+TEST(Readers, FuzzerFindingsFailCleanly) {
+    const std::string dir = std::string(VQSA_SOURCE_DIR) + "/tests/fuzz/regressions";
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        ++files;
+        SCOPED_TRACE(entry.path().filename().string());
+        try {
+            read_mesh_file(entry.path().string());
+        } catch (const MeshReadError&) {
+        }
+    }
+    EXPECT_GE(files, 2);
+}
+
+TEST(Readers, NulBytesEndNoTokenForever) {
+    const std::string stl = std::string("solid t\n facet normal 0 0 0\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n"
+                                        "   vertex 0 1 0\n  endl") + '\0' + "oop\n endfacet\nendsolid\n";
+    EXPECT_FALSE(read_error("nul.stl", stl).empty());
+    const std::string off = std::string("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2") + '\0';
+    read_error("nul.off", off);  // reads or fails; must return
 }

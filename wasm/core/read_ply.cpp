@@ -1,6 +1,7 @@
 #include "mesh_io.h"
 #include "text_tokenizer.h"
 
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -165,9 +166,11 @@ PolygonSoup read_ply(std::string_view bytes) {
                     continue;
                 }
                 const double n = body.read(p.count_type);
-                if (n < 0 || n > static_cast<double>(body.remaining()))
-                    throw std::invalid_argument("a " + e.name + " list of " + std::to_string(static_cast<long long>(n)) +
-                                                " items, more than the file holds");
+                if (!(n >= 0 && n <= static_cast<double>(body.remaining()))) {
+                    char count[32];
+                    std::snprintf(count, sizeof count, "%.0f", n);  // n may be far beyond any integer type
+                    throw std::invalid_argument("a " + e.name + " list of " + count + " items, more than the file holds");
+                }
                 if (int(i) == face_list && is_face) polygon.clear();
                 for (int k = 0; k < static_cast<int>(n); ++k) {
                     const double v = body.read(p.type);

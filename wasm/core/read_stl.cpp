@@ -60,7 +60,8 @@ PolygonSoup read_stl(std::string_view bytes) {
         if (84 + 50 * std::uint64_t{triangles} == bytes.size()) return read_binary_stl(bytes, triangles);
     }
     std::size_t start = 0;
-    while (start < bytes.size() && std::strchr(" \t\r\n", bytes[start])) ++start;
+    while (start < bytes.size() && (bytes[start] == ' ' || bytes[start] == '\t' || bytes[start] == '\r' || bytes[start] == '\n'))
+        ++start;
     if (bytes.substr(start, 5) != "solid") {
         if (bytes.size() < 84) throw std::invalid_argument("too short for a binary STL and not an ASCII one");
         std::uint32_t triangles;

@@ -7,6 +7,13 @@
 
 namespace vqsa {
 
+namespace {
+
+// Not strchr: it would also match a NUL byte in the text, which then ended no token.
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+
+}  // namespace
+
 TextTokenizer::TextTokenizer(std::string_view text, char comment) : text_(text), comment_(comment) {}
 
 void TextTokenizer::skip_space(bool cross_lines) {
@@ -18,7 +25,7 @@ void TextTokenizer::skip_space(bool cross_lines) {
         } else if (comment_ != '\0' && c == comment_) {
             while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
             continue;
-        } else if (!(c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v')) {
+        } else if (!is_space(c)) {
             return;
         }
         ++pos_;
@@ -33,9 +40,7 @@ bool TextTokenizer::at_end() {
 std::string_view TextTokenizer::token(const char* what) {
     if (at_end()) fail(std::string("unexpected end of file, expected ") + what);
     const std::size_t start = pos_;
-    while (pos_ < text_.size() && !std::strchr(" \t\r\n\f\v", text_[pos_]) &&
-           !(comment_ != '\0' && text_[pos_] == comment_))
-        ++pos_;
+    while (pos_ < text_.size() && !is_space(text_[pos_]) && !(comment_ != '\0' && text_[pos_] == comment_)) ++pos_;
     return text_.substr(start, pos_ - start);
 }
 
@@ -43,9 +48,7 @@ std::string_view TextTokenizer::token_on_line() {
     skip_space(false);
     if (pos_ >= text_.size() || text_[pos_] == '\n') return {};
     const std::size_t start = pos_;
-    while (pos_ < text_.size() && !std::strchr(" \t\r\n\f\v", text_[pos_]) &&
-           !(comment_ != '\0' && text_[pos_] == comment_))
-        ++pos_;
+    while (pos_ < text_.size() && !is_space(text_[pos_]) && !(comment_ != '\0' && text_[pos_] == comment_)) ++pos_;
     return text_.substr(start, pos_ - start);
 }
 
