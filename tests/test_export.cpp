@@ -110,15 +110,20 @@ EngineOptions options_for(int proxies) {
     return o;
 }
 
+// Runs the engine, exports, keeps the GLB for the validator and checks the round trip.
+std::string export_checked(const Mesh& mesh, const EngineOptions& options, const std::string& name) {
+    Engine engine(mesh, options);
+    engine.run();
+    const std::string bytes = export_glb(mesh, engine);
+    keep(name, bytes);
+    check_round_trip(mesh, engine, bytes);
+    return bytes;
+}
+
 }  // namespace
 
 TEST(Export, FandiskRoundTrip) {
-    const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
-    Engine engine(mesh, options_for(22));
-    engine.run();
-    const std::string bytes = export_glb(mesh, engine);
-    keep("fandisk.glb", bytes);
-    check_round_trip(mesh, engine, bytes);
+    export_checked(read_mesh_file(test::shared_mesh("fandisk.off")), options_for(22), "fandisk.glb");
 }
 
 TEST(Export, LargeMeshUsesThirtyTwoBitIndices) {
@@ -127,13 +132,8 @@ TEST(Export, LargeMeshUsesThirtyTwoBitIndices) {
     ASSERT_GT(grid.mesh.vertices.size(), 65535u);
     EngineOptions o = options_for(4);
     o.measure = false;
-    Engine engine(grid.mesh, o);
-    engine.run();
-    const std::string bytes = export_glb(grid.mesh, engine);
-    keep("large_grid.glb", bytes);
-    const tinygltf::Model m = parse(bytes);
+    const tinygltf::Model m = parse(export_checked(grid.mesh, o, "large_grid.glb"));
     EXPECT_EQ(m.accessors[m.meshes[0].primitives[0].indices].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
-    check_round_trip(grid.mesh, engine, bytes);
 }
 
 TEST(Export, SeveralComponentsAndDroppedFaces) {
@@ -144,12 +144,7 @@ TEST(Export, SeveralComponentsAndDroppedFaces) {
     soup.add_polygon(degenerate, 3);
     const Mesh mesh = build_mesh(soup);
     ASSERT_EQ(mesh.input_face_count, static_cast<int>(mesh.triangles.size()) + 1);
-    Engine engine(mesh, options_for(6));
-    engine.run();
-    const std::string bytes = export_glb(mesh, engine);
-    keep("two_parts.glb", bytes);
-    check_round_trip(mesh, engine, bytes);
-    const tinygltf::Model m = parse(bytes);
+    const tinygltf::Model m = parse(export_checked(mesh, options_for(6), "two_parts.glb"));
     EXPECT_EQ(m.scenes[0].extras.Get("dropped_faces").Get(0).GetNumberAsInt(), mesh.input_face_count - 1);
 }
 
@@ -157,9 +152,5 @@ TEST(Export, WithoutProjectionOnlyTheInputNode) {
     Shape capsule = make_capsule(0.5, 1, 24, 6);
     EngineOptions o = options_for(3);
     o.project = false;
-    Engine engine(capsule.mesh, o);
-    engine.run();
-    const std::string bytes = export_glb(capsule.mesh, engine);
-    keep("capsule_unprojected.glb", bytes);
-    check_round_trip(capsule.mesh, engine, bytes);
+    export_checked(capsule.mesh, o, "capsule_unprojected.glb");
 }

@@ -65,48 +65,47 @@ std::vector<int> rings_from_boundary(const Model& m, const std::vector<int>& lab
     return ring;
 }
 
-void run(BoundarySmoother& s) {
-    while (s.step()) {
+// Smooths the roof's labels; returns them as they were.
+std::vector<int> smooth(Roof& roof, int rings, double lambda, const std::vector<int>& anchors = {}) {
+    const std::vector<int> before = roof.labels;
+    SmoothingOptions options;
+    options.rings = rings;
+    options.lambda = lambda;
+    BoundarySmoother smoother(roof.model, roof.planes, roof.labels, anchors, options);
+    EXPECT_GE(smoother.pair_count(), 1);
+    while (smoother.step()) {
     }
+    return before;
 }
 
 }  // namespace
 
 TEST(GraphCut, ZigZagBoundaryStraightensWithinTheBand) {
     Roof roof = make_roof(60);
-    const std::vector<int> before = roof.labels;
-    const std::vector<int> ring = rings_from_boundary(roof.model, before);
-    SmoothingOptions options;
-    options.rings = 3;
-    options.lambda = 1;
-    BoundarySmoother smoother(roof.model, roof.planes, roof.labels, {}, options);
-    ASSERT_EQ(smoother.pair_count(), 1);
-    run(smoother);
+    const std::vector<int> ring = rings_from_boundary(roof.model, roof.labels);
+    const int rings = 3;
+    const std::vector<int> before = smooth(roof, rings, 1.0);
     EXPECT_LT(boundary_length(roof.model, roof.labels), 0.8 * boundary_length(roof.model, before));
     int changed = 0;
     for (int f = 0; f < roof.model.face_count(); ++f) {
         if (roof.labels[f] == before[f]) continue;
         ++changed;
         EXPECT_GE(ring[f], 1);
-        EXPECT_LE(ring[f], options.rings) << "face " << f << " outside the band changed";
+        EXPECT_LE(ring[f], rings) << "face " << f << " outside the band changed";
     }
     EXPECT_GT(changed, 0);
 }
 
 TEST(GraphCut, ZeroLambdaGivesTheDataOptimalLabels) {
     Roof roof = make_roof(40);
-    const std::vector<int> before = roof.labels;
-    const std::vector<int> ring = rings_from_boundary(roof.model, before);
-    SmoothingOptions options;
-    options.rings = 2;
-    options.lambda = 0;
-    BoundarySmoother smoother(roof.model, roof.planes, roof.labels, {}, options);
-    run(smoother);
+    const std::vector<int> ring = rings_from_boundary(roof.model, roof.labels);
+    const int rings = 2;
+    const std::vector<int> before = smooth(roof, rings, 0.0);
     FaceErrors errors;
     errors.reset(roof.model, roof.planes);
     int checked = 0;
     for (int f = 0; f < roof.model.face_count(); ++f) {
-        if (ring[f] == 0 || ring[f] > options.rings) {
+        if (ring[f] == 0 || ring[f] > rings) {
             EXPECT_EQ(roof.labels[f], before[f]);  // outside the band: fixed
             continue;
         }
@@ -127,14 +126,9 @@ TEST(GraphCut, AnchoredFacesAndFacesTouchingAThirdRegionStay) {
         if (c.y() > 0.5 && std::abs(c.x()) < 0.3) roof.labels[f] = 2;
     }
     roof.planes.push_back(roof.planes[0]);
-    const std::vector<int> before = roof.labels;
     std::vector<int> anchors;
     for (int f = 0; f < roof.model.face_count(); f += 97) anchors.push_back(f);
-    SmoothingOptions options;
-    options.rings = 3;
-    options.lambda = 5;
-    BoundarySmoother smoother(roof.model, roof.planes, roof.labels, anchors, options);
-    run(smoother);
+    const std::vector<int> before = smooth(roof, 3, 5.0, anchors);
     for (int f : anchors) EXPECT_EQ(roof.labels[f], before[f]);
     const DualGraph& g = roof.model.graph;
     for (int f = 0; f < roof.model.face_count(); ++f) {
