@@ -29,6 +29,7 @@ const char* kUsage =
     "  --lambda L            boundary-length weight of the smoothing (default 1)\n"
     "  --no-smooth           keep the Lloyd boundaries\n"
     "  --no-refit            keep general quadrics (no plane/sphere/cylinder/cone refit)\n"
+    "  --no-project          no projected mesh and no error metrics\n"
     "  --report FILE.json    write the JSON report\n"
     "  --labels FILE.txt     write one proxy id per input face\n"
     "  --projected FILE      write the projected mesh (.obj, .ply or .off)\n"
@@ -97,6 +98,8 @@ Arguments parse(int argc, char** argv) {
             a.options.smooth = false;
         } else if (arg == "--no-refit") {
             a.options.refit = false;
+        } else if (arg == "--no-project") {
+            a.options.project = false;
         } else if (arg == "--projected") {
             a.projected = value();
         } else if (arg == "-o" || arg == "--output") {

@@ -7,7 +7,7 @@ import { performance } from 'node:perf_hooks';
 import { loadVqsa } from './load.mjs';
 
 const usage = `usage: vqsa-wasm INPUT [--proxies N] [--tolerance T] [--max-iterations K] [--seed S]
-                 [--rings K] [--lambda L] [--no-smooth] [--no-refit]
+                 [--rings K] [--lambda L] [--no-smooth] [--no-refit] [--no-project]
                  [--report FILE.json] [--labels FILE.txt] [--projected FILE] [-o FILE.glb] [--quiet]
   INPUT is .off .obj .ply .stl .gltf .glb, or example:NAME`;
 
@@ -50,6 +50,7 @@ function parse(argv) {
         break;
       case '--no-smooth': a.options.smooth = false; break;
       case '--no-refit': a.options.refit = false; break;
+      case '--no-project': a.options.project = false; break;
       case '--report': a.report = value(); break;
       case '--labels': a.labels = value(); break;
       case '--projected': a.projected = value(); break;
