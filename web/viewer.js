@@ -428,33 +428,37 @@ export function createViewer(root, options = {}) {
     api.dispatchEvent(new CustomEvent('loaded', { detail: loaded.info }));
   }
 
+  // Every load or run supersedes the one before: a superseded one changes nothing
+  // when its answer (or its cancellation) finally arrives.
+  let generation = 0;
   async function guarded(work) {
+    const mine = ++generation;
+    const current = () => mine === generation;
     if (busy) {
       client.cancel();
       await new Promise((r) => setTimeout(r, 0));
     }
     busy = true;
     try {
-      return await work();
+      return await work(current);
     } catch (e) {
+      if (!current()) return null;
+      live = null;
       if (e.name === 'AbortError') {
-        live = null;
         setState(result ? 'done' : 'idle');
         setStatus('cancelled');
-        showView();
-        return null;
+      } else {
+        showError(e.message);
       }
-      live = null;
-      showError(e.message);
       showView();
       return null;
     } finally {
-      busy = false;
+      if (current()) busy = false;
     }
   }
 
   async function load(source, name) {
-    return guarded(async () => {
+    return guarded(async (current) => {
       clearError();
       setState('loading');
       let bytes = source, fileName = name;
@@ -471,7 +475,9 @@ export function createViewer(root, options = {}) {
         bytes = await source.arrayBuffer();
       }
       setStatus(`reading ${fileName}…`);
-      await receiveMesh(await client.load(bytes, fileName), fileName);
+      const loaded = await client.load(bytes, fileName);
+      if (!current()) return null;
+      await receiveMesh(loaded, fileName);
       setState('idle');
       return mesh.info;
     });
@@ -479,10 +485,12 @@ export function createViewer(root, options = {}) {
 
   async function loadExample(name) {
     if (name === 'bunny') return load(new URL('./examples/bunny.off', import.meta.url).href, 'bunny.off');
-    return guarded(async () => {
+    return guarded(async (current) => {
       clearError();
       setState('loading');
-      await receiveMesh(await client.loadExample(name), name);
+      const loaded = await client.loadExample(name);
+      if (!current()) return null;
+      await receiveMesh(loaded, name);
       setState('idle');
       return mesh.info;
     });
@@ -491,7 +499,7 @@ export function createViewer(root, options = {}) {
   async function run(overrides = {}) {
     Object.assign(settings, overrides);
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
-    return guarded(async () => {
+    return guarded(async (current) => {
       if (!mesh) throw new Error('open a mesh first');
       clearError();
       result = null;
@@ -510,6 +518,7 @@ export function createViewer(root, options = {}) {
       showView();
       const done = await client.run(runOptions, {
         onProgress: (p) => {
+          if (!current()) return;
           live = p.labels;
           root.dataset.proxies = String(p.proxies);
           if (p.phase !== 'smooth' && !p.lloydDone) history.push([p.proxies, p.rms]);
@@ -520,6 +529,7 @@ export function createViewer(root, options = {}) {
           api.dispatchEvent(new CustomEvent('progress', { detail: p }));
         },
       });
+      if (!current()) return null;
       live = null;
       result = done;
       result.reportObject = JSON.parse(done.report);

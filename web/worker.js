@@ -74,11 +74,18 @@ async function run(id, options) {
   }, [faceLabels.buffer, lloydFaceLabels.buffer, projected.buffer, vertexErrors.buffer, glb.buffer]);
 }
 
-self.onmessage = async ({ data }) => {
+// Requests run one after another (a load arriving during a run waits for it to end), but
+// a cancel acts at once: the running loop sees the flag at its next slice.
+let queue = Promise.resolve();
+self.onmessage = ({ data }) => {
   if (data.type === 'cancel') {
     cancelRequested = true;
     return;
   }
+  queue = queue.then(() => handle(data));
+};
+
+async function handle(data) {
   try {
     const vqsa = await ready;
     session ??= new vqsa.Session();
@@ -93,4 +100,4 @@ self.onmessage = async ({ data }) => {
       : e instanceof Error ? e.message : String(e);
     post({ type: 'error', id: data.id, message, fatal });
   }
-};
+}

@@ -134,7 +134,7 @@ test('cancel mid-run, then run again', async () => {
     const v = document.querySelector('.vqsa-viewer');
     return v.dataset.state === 'running' && Number(v.dataset.proxies) >= 3;
   }, null, { timeout: 60000 });
-  await page.click('button:has-text("Cancel")');
+  await page.click('button:has-text("Cancel")', { force: true });
   await page.waitForFunction(() => document.querySelector('.vqsa-viewer').dataset.state !== 'running');
   assert.equal(await state(page), 'idle');
   await setProxies(page, 8);
