@@ -282,6 +282,7 @@ void Engine::refit(const std::vector<char>& changed) {
         if (!changed[i]) continue;
         Proxy& p = proxies_[i];
         p.area = p.moments[0];
+        if (!(p.area > 0)) continue;  // faces too small to measure (underflow): keep the seed plane
         const Fit fit = p.faces < options_.min_quadric_faces ? fit_plane(p.moments) : fit_region(p.moments, options_.fit);
         p.quadric = fit.quadric;
         p.fit_error = fit.mean_squared;

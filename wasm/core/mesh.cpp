@@ -87,6 +87,24 @@ Mesh build_mesh(const PolygonSoup& soup) {
         }
     }
     mesh.input_face_count = fanned;
+    // The algorithms work in the unit frame (centred, longest side 1): a triangle that is
+    // degenerate there, its size lost to rounding against the model's extent, goes too.
+    if (!mesh.triangles.empty()) {
+        const Frame frame = unit_frame(mesh);
+        std::size_t kept = 0;
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            const Triangle& tri = mesh.triangles[t];
+            const Vec3 a = frame.to_unit(mesh.vertices[tri[0]]);
+            const Vec3 e1 = frame.to_unit(mesh.vertices[tri[1]]) - a, e2 = frame.to_unit(mesh.vertices[tri[2]]) - a;
+            const double longest2 = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+            if (!(e1.cross(e2).norm() > 1e-13 * longest2)) continue;
+            mesh.triangles[kept] = tri;
+            mesh.source_face[kept] = mesh.source_face[t];
+            ++kept;
+        }
+        mesh.triangles.resize(kept);
+        mesh.source_face.resize(kept);
+    }
     if (fanned == 0) throw std::invalid_argument("the file has no faces");
     if (mesh.triangles.empty())
         throw std::invalid_argument("all " + std::to_string(fanned) + " triangles are degenerate (zero area)");
