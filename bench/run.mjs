@@ -156,7 +156,7 @@ function chart({ title, xLabel, yLabel, series, logX = false }) {
     parts.push(`<line x1="${l}" x2="${w - r}" y1="${Y(10 ** p)}" y2="${Y(10 ** p)}" stroke="#eee"/>`,
       `<text x="${l - 6}" y="${Y(10 ** p) + 4}" text-anchor="end">1e${p}</text>`);
   const ticks = [...new Set(all.map(([x]) => x))];
-  for (const x of ticks) parts.push(`<text x="${X(x)}" y="${h - b + 16}" text-anchor="middle">${x >= 1e6 ? `${x / 1e6}M` : x >= 1e3 ? `${Math.round(x / 1e3)}K` : x}</text>`);
+  for (const x of ticks) parts.push(`<text x="${X(x)}" y="${h - b + 16}" text-anchor="middle">${x >= 1e6 ? `${(x / 1e6).toFixed(1)}M` : x >= 1e3 ? `${Math.round(x / 1e3)}K` : x}</text>`);
   parts.push(`<text x="${(l + w - r) / 2}" y="${h - 8}" text-anchor="middle">${xLabel}</text>`,
     `<text x="16" y="${(t + h - b) / 2}" text-anchor="middle" transform="rotate(-90 16 ${(t + h - b) / 2})">${yLabel}</text>`);
   series.forEach((s, i) => {
