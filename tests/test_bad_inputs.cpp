@@ -47,6 +47,7 @@ TEST(BadInputs, EachFailsClearlyOrRunsToFiniteResults) {
             } catch (const MeshReadError& e) {
                 const std::string message = e.what();
                 EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+                EXPECT_EQ(message.find("cannot open"), std::string::npos) << "the corpus file is missing";
                 EXPECT_NE(lower(message).find(want["error"].get<std::string>()), std::string::npos) << message;
             }
             continue;
