@@ -405,19 +405,23 @@ export function createViewer(root, options = {}) {
   display.add(settings, 'colouring', Object.keys(COLOURINGS)).name('colour').onChange(() => { paint(); fillTable(); });
   display.add(settings, 'wireframe').name('wireframe').onChange((v) => { wire.visible = v; });
 
+  function forgetResult() {
+    result = null;
+    history = [];
+    highlighted = -1;
+    pinned = false;
+    fillTable();
+    detail.replaceChildren();
+  }
+
   // ---- loading -----------------------------------------------------------------------
   async function receiveMesh(loaded, name) {
     mesh = { ...loaded, name };
     legendColours = loaded.legend;
     if (examples.options.length === 1)
       for (const e of [...loaded.examples, 'bunny']) examples.append(element('option', { value: e, text: e.replaceAll('_', ' ') }));
-    result = null;
+    forgetResult();
     live = null;
-    history = [];
-    highlighted = -1;
-    pinned = false;
-    fillTable();
-    detail.replaceChildren();
     drawPlot();
     surface.userData.kind = 'input';
     useGeometry(buildGeometry(mesh.positions));
@@ -502,12 +506,7 @@ export function createViewer(root, options = {}) {
     return guarded(async (current) => {
       if (!mesh) throw new Error('open a mesh first');
       clearError();
-      result = null;
-      history = [];
-      highlighted = -1;
-      pinned = false;
-      fillTable();
-      detail.replaceChildren();
+      forgetResult();
       setState('running');
       const target = settings.useTolerance ? 0 : settings.proxies;
       const runOptions = { proxies: target, rings: settings.rings, lambda: settings.lambda, seed: settings.seed,

@@ -11,6 +11,13 @@ const corpus = join(root, 'tests', 'bad_inputs');
 const expected = JSON.parse(readFileSync(join(corpus, 'expected.json'), 'utf8'));
 const vqsa = await loadVqsa();
 
+// Runs an approximation to the end; returns its proxies.
+function approximate(session, options) {
+  session.start(options);
+  while (session.stepFor(100)) {}
+  return JSON.parse(session.proxies());
+}
+
 const finite = (value) => (typeof value === 'number' ? Number.isFinite(value)
   : value && typeof value === 'object' ? Object.values(value).every(finite) : true);
 
@@ -45,9 +52,7 @@ test('options out of range are refused with a message', () => {
   assert.throws(() => session.start({ proxies: 2.5 }), /integer/);
   assert.throws(() => session.start({ proxies: '3' }), /must be a number/);
   assert.throws(() => session.start({ proxies: 3, rings: 0 }), /rings/);
-  session.start({ proxies: 3 });
-  while (session.stepFor(100)) {}
-  assert.equal(JSON.parse(session.proxies()).length, 3);
+  assert.equal(approximate(session, { proxies: 3 }).length, 3);
   session.delete();
 });
 
@@ -59,9 +64,7 @@ test('a mesh too large for the 4 GB of wasm32 fails with a clear message, and th
     while (session.stepFor(1000)) {}
   }, /out of memory: the mesh is too large for this browser/);
   session.loadExample('capsule');
-  session.start({ proxies: 3 });
-  while (session.stepFor(100)) {}
-  assert.equal(JSON.parse(session.proxies()).length, 3);
+  assert.equal(approximate(session, { proxies: 3 }).length, 3);
   session.delete();
 });
 
@@ -69,8 +72,7 @@ test('100 runs in one instance do not grow its memory', () => {
   const session = new vqsa.Session();
   const run = () => {
     session.loadExample('capsule');
-    session.start({ proxies: 4 });
-    while (session.stepFor(100)) {}
+    approximate(session, { proxies: 4 });
     session.glb();
     session.labels();
   };
