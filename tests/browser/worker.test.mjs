@@ -69,3 +69,17 @@ test('cancelling mid-run, then running again, works', async () => {
   assert.match(outcome.bad, /junk\.stl: too short for a binary STL/);
   assert.ok(outcome.afterBad > 0);
 });
+
+test('a mesh beyond the browser\'s memory fails with a clear message, and the next run works', async () => {
+  const outcome = await page.evaluate(async () => {
+    const client = new window.VqsaClient();
+    await client.loadExample('turned_part:20000000');
+    const failure = await client.run({ proxies: 50 }).then(() => 'finished', (e) => e.message);
+    await client.loadExample('capsule');
+    const next = await client.run({ proxies: 3 });
+    client.terminate();
+    return { failure, proxies: next.proxies.length };
+  });
+  assert.match(outcome.failure, /out of memory: the mesh is too large for this browser/);
+  assert.equal(outcome.proxies, 3);
+});
