@@ -145,12 +145,7 @@ public:
 
     val face_labels() const { return guarded([&] { return copy_to_js("Int32Array", engine().face_labels()); }); }
     val lloyd_face_labels() const {
-        return guarded([&] {
-            const std::vector<int> input_order = engine().lloyd_labels();
-            std::vector<int> model_order;
-            for (int f : mesh_->source_face) model_order.push_back(input_order[f]);
-            return copy_to_js("Int32Array", model_order);
-        });
+        return guarded([&] { return copy_to_js("Int32Array", engine().lloyd_face_labels()); });
     }
     val labels() const { return guarded([&] { return copy_to_js("Int32Array", engine().labels()); }); }
 

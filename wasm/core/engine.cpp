@@ -98,9 +98,9 @@ std::vector<int> Engine::labels() const {
 }
 
 std::vector<int> Engine::lloyd_labels() const {
-    if (lloyd_labels_.empty()) return labels();
+    const std::vector<int>& model_order = lloyd_face_labels();
     std::vector<int> out(input_face_count_, -1);
-    for (std::size_t f = 0; f < lloyd_labels_.size(); ++f) out[source_face_[f]] = lloyd_labels_[f];
+    for (std::size_t f = 0; f < model_order.size(); ++f) out[source_face_[f]] = model_order[f];
     return out;
 }
 
@@ -149,11 +149,13 @@ bool Engine::step() {
         if (stage_ == Stage::lloyd) {
             // A run cancelled right after an operation still needs one flood to be consistent.
             if (stage_iteration_ == 0 && in_lloyd_) lloyd_iteration();
-            lloyd_labels_ = labels_;
+            end_lloyd(StopReason::cancelled);
+        } else {
+            // Post-processing stops where it is; the Lloyd labels stay those of the Lloyd stage.
+            stop_reason_ = StopReason::cancelled;
+            stage_ = Stage::done;
+            last_phase_ = Phase::done;
         }
-        stop_reason_ = StopReason::cancelled;
-        stage_ = Stage::done;
-        last_phase_ = Phase::done;
         return false;
     }
     if (stage_ != Stage::lloyd) {
@@ -427,15 +429,7 @@ bool Engine::split_invalid() {
 }
 
 bool Engine::merge_cheapest(bool gated) {
-    std::vector<std::pair<int, int>> pairs;
-    const DualGraph& g = model_.graph;
-    for (int f = 0; f < model_.face_count(); ++f)
-        for (int e = g.begin(f); e < g.end(f); ++e) {
-            const int a = labels_[f], b = labels_[g.neighbor[e]];
-            if (a < b) pairs.emplace_back(a, b);
-        }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
 
     // Gates: the paper's |Et - (Ei + Ej)| < 0.5 max Ek on mean squared errors, or, as
     // in planar VSA's teleportation, a merge that costs less than half the error of
@@ -458,7 +452,7 @@ bool Engine::merge_cheapest(bool gated) {
         const RegionFrame region = region_frame(united);
         const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
         if (has_two_parts(type)) continue;
-        if (cost < best_cost) best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
+        best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
     }
     if (best_pair < 0) return false;
     const auto [keep, gone] = pairs[best_pair];

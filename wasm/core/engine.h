@@ -120,6 +120,8 @@ public:
     std::vector<int> labels() const;
     // The same before boundary smoothing (equal to labels() when smoothing is off).
     std::vector<int> lloyd_labels() const;
+    // ... and in the model's face order.
+    const std::vector<int>& lloyd_face_labels() const { return lloyd_labels_.empty() ? labels_ : lloyd_labels_; }
     // Projected positions, input coordinates, one per mesh vertex (empty until projected).
     std::vector<Vec3> projected_vertices() const;
     const std::optional<Metrics>& metrics() const { return metrics_; }
