@@ -199,11 +199,11 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
         [&](const Eigen::Matrix<double, 6, 1>& t) {
             Vec3 a, u;
             unpack(t, a, u);
-            const double slope = t[5], scale = 1 / std::sqrt(1 + slope * slope);
-            return [a, u, slope, scale](const Vec3& p) {
+            const double slope = t[5], cosine = 1 / std::sqrt(1 + slope * slope);
+            return [a, u, slope, cosine](const Vec3& p) {
                 const Vec3 d = p - a;
                 const double h = d.dot(u), rho = (d - h * u).norm();
-                return (rho - std::abs(h) * slope) * scale;
+                return (rho - std::abs(h) * slope) * cosine;
             };
         },
         scale);
