@@ -1,7 +1,7 @@
 // Times the Lloyd stage (everything the engine does up to the proxy count) on the
 // shared meshes: `vqsa_bench [MESH_DIR] [RUNS]`. Prints the median of RUNS runs.
-#include "engine.h"
-#include "mesh_io.h"
+#include "lloyd/engine.h"
+#include "io/mesh_io.h"
 
 #include <algorithm>
 #include <chrono>

@@ -2,8 +2,8 @@
 // hierarchical seeding, 20 iterations) at a given proxy count, its output mesh measured
 // with vqsa's own metric. Built only by the benchmark script (Debian libcgal-dev).
 // Usage: planar_vsa MESH PROXIES [RUNS] → one JSON line.
-#include "mesh_io.h"
-#include "metrics.h"
+#include "io/mesh_io.h"
+#include "post/metrics.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>

@@ -1,9 +1,9 @@
 // The bad-input corpus (tests/bad_inputs): each file fails with a clear message or runs
 // to finite results. The WASM build is held to the same file in tests/node.
-#include "engine.h"
-#include "gltf_export.h"
-#include "mesh_io.h"
-#include "report.h"
+#include "lloyd/engine.h"
+#include "export/gltf_export.h"
+#include "io/mesh_io.h"
+#include "export/report.h"
 
 #include <gtest/gtest.h>
 

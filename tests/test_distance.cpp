@@ -1,4 +1,4 @@
-#include "distance.h"
+#include "fitting/distance.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

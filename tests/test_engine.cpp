@@ -1,7 +1,7 @@
-#include "distance.h"
-#include "engine.h"
-#include "mesh_io.h"
-#include "model.h"
+#include "fitting/distance.h"
+#include "lloyd/engine.h"
+#include "io/mesh_io.h"
+#include "geometry/model.h"
 #include "shapes.h"
 #include "test_support.h"
 

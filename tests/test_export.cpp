@@ -1,6 +1,6 @@
-#include "gltf_export.h"
-#include "mesh_io.h"
-#include "report.h"
+#include "export/gltf_export.h"
+#include "io/mesh_io.h"
+#include "export/report.h"
 #include "shapes.h"
 #include "test_support.h"
 

@@ -1,6 +1,6 @@
-#include "classify.h"
-#include "distance.h"
-#include "fit.h"
+#include "fitting/classify.h"
+#include "fitting/distance.h"
+#include "fitting/fit.h"
 #include "shapes.h"
 #include "test_support.h"
 

@@ -1,5 +1,5 @@
-#include "mesh_io.h"
-#include "model.h"
+#include "io/mesh_io.h"
+#include "geometry/model.h"
 #include "shapes.h"
 #include "test_support.h"
 

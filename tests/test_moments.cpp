@@ -1,4 +1,4 @@
-#include "moments.h"
+#include "geometry/moments.h"
 
 #include <gtest/gtest.h>
 

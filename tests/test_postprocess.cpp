@@ -1,11 +1,11 @@
-#include "distance.h"
-#include "engine.h"
-#include "graph_cut.h"
-#include "mesh_io.h"
-#include "metrics.h"
-#include "project.h"
+#include "fitting/distance.h"
+#include "lloyd/engine.h"
+#include "post/graph_cut.h"
+#include "io/mesh_io.h"
+#include "post/metrics.h"
+#include "post/project.h"
 #include "shapes.h"
-#include "special_fit.h"
+#include "fitting/special_fit.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

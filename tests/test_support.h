@@ -1,8 +1,8 @@
 // Canonical quadric surfaces with their parametrisations, shared by the tests.
 #pragma once
 
-#include "classify.h"
-#include "quadric.h"
+#include "fitting/classify.h"
+#include "fitting/quadric.h"
 
 #include <functional>
 #include <random>

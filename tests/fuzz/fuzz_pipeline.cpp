@@ -1,10 +1,10 @@
 // libFuzzer target for the whole pipeline on small meshes: load → approximate → smooth →
 // classify and refit → project → measure → report → GLB. The first byte picks the proxy
 // count, the second the format.
-#include "engine.h"
-#include "gltf_export.h"
-#include "mesh_io.h"
-#include "report.h"
+#include "lloyd/engine.h"
+#include "export/gltf_export.h"
+#include "io/mesh_io.h"
+#include "export/report.h"
 
 #include <algorithm>
 #include <cstddef>

@@ -1,6 +1,6 @@
 // libFuzzer target for one mesh reader (FUZZ_EXTENSION picks it): any input must either
 // read or fail with a MeshReadError. Crashes, leaks, hangs and UB are findings.
-#include "mesh_io.h"
+#include "io/mesh_io.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,11 +1,11 @@
 // The engine for JavaScript (embind): typed arrays in and out, no per-element calls,
 // and every C++ exception turned into a JS Error carrying its message.
-#include "engine.h"
-#include "gltf_export.h"
-#include "mesh_io.h"
-#include "mesh_write.h"
-#include "palette.h"
-#include "report.h"
+#include "lloyd/engine.h"
+#include "export/gltf_export.h"
+#include "io/mesh_io.h"
+#include "io/mesh_write.h"
+#include "export/palette.h"
+#include "export/report.h"
 #include "shapes.h"
 #include "examples.h"
 

@@ -1,10 +1,10 @@
 // vqsa command line: approximate a mesh by quadric proxies and write a report.
-#include "engine.h"
+#include "lloyd/engine.h"
 #include "examples.h"
-#include "gltf_export.h"
-#include "mesh_io.h"
-#include "mesh_write.h"
-#include "report.h"
+#include "export/gltf_export.h"
+#include "io/mesh_io.h"
+#include "io/mesh_write.h"
+#include "export/report.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,0 +1,75 @@
+// Classification of quadrics into the affine taxonomy, with geometric parameters
+// (ALGORITHM §6). Decisions are made in the frame of the region the quadric stands
+// for, so "zero" means negligible at the region's scale.
+#pragma once
+
+#include "fitting/quadric.h"
+
+#include <Eigen/Core>
+
+namespace vqsa {
+
+enum class QuadricType {
+    plane,
+    sphere,
+    cylinder,  // circular
+    cone,      // circular
+    ellipsoid,
+    hyperboloid_one_sheet,
+    hyperboloid_two_sheets,
+    elliptic_paraboloid,
+    hyperbolic_paraboloid,
+    elliptic_cylinder,
+    hyperbolic_cylinder,
+    parabolic_cylinder,
+    elliptic_cone,
+    intersecting_planes,
+    parallel_planes,
+    empty,  // no real points (fits never produce it on real data, but coefficients can)
+};
+
+const char* type_name(QuadricType type);
+
+struct ClassifyOptions {
+    // An eigenvalue of A is zero when below this fraction of the largest one.
+    double zero_eigenvalue = 1e-3;
+    // The constant (or the linear term along a zero eigenvalue) is zero when below this
+    // fraction of the largest eigenvalue times the region's squared radius (or radius).
+    double zero_offset = 1e-3;
+    // Curvature below this, relative to the gradient, at the region's scale: a plane.
+    double flat = 1e-4;
+    // Eigenvalues equal within this relative difference make a sphere, circular
+    // cylinder or circular cone.
+    double equal_eigenvalues = 1e-2;
+};
+
+struct Classification {
+    QuadricType type = QuadricType::plane;
+    // The centre (ellipsoid, hyperboloids, sphere, parallel planes), vertex
+    // (paraboloids), apex (cones), or the point of the axis, line or plane nearest
+    // the region's centre (cylinders, intersecting planes, plane).
+    Vec3 center = Vec3::Zero();
+    // Columns are the principal axes (eigenvectors of A). The distinguished axis
+    // (cylinder and cone axis, paraboloid axis, plane normal, the lone-sign axis of a
+    // hyperboloid) is column 2.
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    // Semi-axis lengths along the columns of `rotation` (0 where none).
+    Vec3 semi_axes = Vec3::Zero();
+    double radius = 0;      // sphere, cylinder
+    double half_angle = 0;  // cone, radians
+
+    Vec3 axis() const { return rotation.col(2); }
+};
+
+// `center` and `radius` describe the region (its centroid and RMS radius) in f's frame.
+Classification classify(const Quadric& f, const Vec3& center, double radius, const ClassifyOptions& options = {});
+
+// The same classification in coordinates q = scale * p + translation.
+Classification change_frame(const Classification& c, double scale, const Vec3& translation);
+
+// The quadrics with two separate parts (sheets, branches or planes).
+bool has_two_parts(QuadricType type);
+// For those, which part a point lies on (+1 or -1; 0 when undecidable).
+int part_of(const Classification& c, const Vec3& p);
+
+}  // namespace vqsa

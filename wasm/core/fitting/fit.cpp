@@ -1,0 +1,117 @@
+#include "fitting/fit.h"
+
+#include <Eigen/Eigenvalues>
+
+namespace vqsa {
+
+namespace {
+
+// The region seen from its centroid, in units of its RMS radius, with moments divided
+// by the area: every entry is O(1), whatever the region's size and place.
+struct LocalMoments {
+    Moments mean;  // ∫ ((p - center)/radius)^e dA / area
+    Vec3 center;
+    double radius;
+};
+
+LocalMoments localize(const Moments& m) {
+    const RegionFrame frame = region_frame(m);
+    LocalMoments local{shifted_moments(m, frame.center, frame.radius), frame.center, frame.radius};
+    for (double& v : local.mean) v /= m[0];
+    return local;
+}
+
+Fit to_unit_frame(const Quadric& local_quadric, double mean_squared, const LocalMoments& local) {
+    // q_local = (p - center) / radius, i.e. p = radius * q_local + center.
+    return {normalized(change_frame(local_quadric, local.radius, local.center)), mean_squared * local.radius * local.radius};
+}
+
+// The quadric monomials' exponents, C0..C9.
+constexpr int kMonomial[10][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 0},
+                                  {1, 1, 0}, {1, 0, 1}, {0, 2, 0}, {0, 1, 1}, {0, 0, 2}};
+
+Fit taubin_local(const LocalMoments& local, double regularization) {
+    const Moments& mu = local.mean;
+    auto moment = [&](int i, int j, int k) { return mu[moment_index(i, j, k)]; };
+
+    Eigen::Matrix<double, 10, 10> M, N;
+    for (int a = 0; a < 10; ++a)
+        for (int b = 0; b < 10; ++b) {
+            M(a, b) = moment(kMonomial[a][0] + kMonomial[b][0], kMonomial[a][1] + kMonomial[b][1],
+                             kMonomial[a][2] + kMonomial[b][2]);
+            // ∫ ∇v_a · ∇v_b: each partial derivative is a coefficient times a monomial.
+            double n = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                if (kMonomial[a][axis] == 0 || kMonomial[b][axis] == 0) continue;
+                int e[3];
+                for (int k = 0; k < 3; ++k) e[k] = kMonomial[a][k] + kMonomial[b][k] - (k == axis ? 2 : 0);
+                n += kMonomial[a][axis] * kMonomial[b][axis] * moment(e[0], e[1], e[2]);
+            }
+            N(a, b) = n;
+        }
+
+    // Eliminate C0 (it has no gradient): C0 = -m0ᵀ s̃ / m00 with m00 = 1.
+    const Eigen::Matrix<double, 9, 1> m0 = M.block<9, 1>(1, 0);
+    Eigen::Matrix<double, 9, 9> reduced = M.block<9, 9>(1, 1) - m0 * m0.transpose();
+    Eigen::Matrix<double, 9, 9> gradient = N.block<9, 9>(1, 1);
+    gradient.diagonal().array() += regularization * gradient.trace() / 9.0;
+    reduced = 0.5 * (reduced + reduced.transpose()).eval();
+
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> solver(reduced, gradient);
+    if (solver.info() != Eigen::Success) throw std::runtime_error("quadric fit: the eigen solver failed");
+    const Eigen::Matrix<double, 9, 1> s = solver.eigenvectors().col(0);
+    Quadric q;
+    q.c[0] = -m0.dot(s);
+    for (int i = 0; i < 9; ++i) q.c[i + 1] = s[i];
+    return {q, std::max(0.0, solver.eigenvalues()[0])};
+}
+
+Fit plane_local(const LocalMoments& local) {
+    const Moments& mu = local.mean;
+    Eigen::Matrix3d covariance;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+            int e[3] = {0, 0, 0};
+            ++e[r], ++e[c];
+            covariance(r, c) = mu[moment_index(e[0], e[1], e[2])];
+        }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    return {Quadric::plane(solver.eigenvectors().col(0), Vec3::Zero()), std::max(0.0, solver.eigenvalues()[0])};
+}
+
+}  // namespace
+
+RegionFrame region_frame(const Moments& m) {
+    const double area = m[0];
+    if (!(area > 0)) throw std::invalid_argument("cannot fit a region of zero area");
+    RegionFrame frame{Vec3(m[1], m[2], m[3]) / area, 1.0};
+    const Moments centred = shifted_moments(m, frame.center, 1.0);
+    const double spread =
+        (centred[moment_index(2, 0, 0)] + centred[moment_index(0, 2, 0)] + centred[moment_index(0, 0, 2)]) / area;
+    if (spread > 0) frame.radius = std::sqrt(spread);
+    return frame;
+}
+
+Fit fit_taubin(const Moments& region) {
+    const LocalMoments local = localize(region);
+    const Fit f = taubin_local(local, FitOptions{}.regularization);
+    return to_unit_frame(f.quadric, f.mean_squared, local);
+}
+
+Fit fit_plane(const Moments& region) {
+    const LocalMoments local = localize(region);
+    const Fit f = plane_local(local);
+    return to_unit_frame(f.quadric, f.mean_squared, local);
+}
+
+Fit fit_region(const Moments& region, const FitOptions& options) {
+    const LocalMoments local = localize(region);
+    const Fit plane = plane_local(local);
+    const Fit quadric = taubin_local(local, options.regularization);
+    const double negligible = options.negligible_distance * options.negligible_distance;
+    const bool prefer_plane = plane.mean_squared <= (1 + options.plane_tolerance) * quadric.mean_squared + negligible;
+    const Fit& best = prefer_plane ? plane : quadric;
+    return to_unit_frame(best.quadric, best.mean_squared, local);
+}
+
+}  // namespace vqsa

@@ -1,0 +1,43 @@
+// Fitting a proxy to a region from its moments (ALGORITHM §2).
+#pragma once
+
+#include "geometry/moments.h"
+#include "fitting/quadric.h"
+
+namespace vqsa {
+
+struct FitOptions {
+    // The plane is chosen when its mean squared distance is at most
+    // (1 + plane_tolerance) times the quadric's: a quadric must earn its extra
+    // parameters. Distances below `negligible_distance` (relative to the region's
+    // RMS radius) count as zero, so exactly planar regions always get a plane.
+    double plane_tolerance = 0.25;
+    double negligible_distance = 1e-4;
+    // Tikhonov term on Ñ, relative to its mean eigenvalue: keeps the pencil definite
+    // for planar and nearly planar regions.
+    double regularization = 1e-9;
+};
+
+// A region's centroid and RMS radius, from its moments.
+struct RegionFrame {
+    Vec3 center;
+    double radius;
+};
+RegionFrame region_frame(const Moments& region);
+
+struct Fit {
+    Quadric quadric;         // in the moments' frame
+    double mean_squared = 0;  // mean squared (first-order) distance to the surface over the region
+};
+
+// Taubin's fit: the generalised eigenvector of the smallest eigenvalue of M s = λ N s,
+// with C0 eliminated, solved in region-centred, region-scaled coordinates.
+Fit fit_taubin(const Moments& region);
+
+// The L2-optimal plane (area-weighted principal axes).
+Fit fit_plane(const Moments& region);
+
+// The better of the two, with the plane preferred as FitOptions says.
+Fit fit_region(const Moments& region, const FitOptions& options = {});
+
+}  // namespace vqsa

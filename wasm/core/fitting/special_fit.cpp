@@ -1,0 +1,256 @@
+#include "fitting/special_fit.h"
+
+#include "fitting/least_squares.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <functional>
+
+namespace vqsa {
+
+namespace {
+
+Eigen::Matrix3d frame_with_axis(const Vec3& axis) {
+    Eigen::Matrix3d r;
+    r.col(2) = axis.normalized();
+    r.col(0) = r.col(2).unitOrthogonal();
+    r.col(1) = r.col(2).cross(r.col(0));
+    return r;
+}
+
+double weighted_rms(const Samples& s, const std::function<double(const Vec3&)>& distance) {
+    double sum = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const double d = distance(s.points[i]);
+        sum += s.weights[i] * d * d;
+    }
+    return std::sqrt(sum / s.total_weight);
+}
+
+Vec3 weighted_centroid(const Samples& s) {
+    Vec3 c = Vec3::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i) c += s.weights[i] * s.points[i];
+    return c / s.total_weight;
+}
+
+}  // namespace
+
+double special_distance(const Classification& shape, const Vec3& p) {
+    const Vec3 d = p - shape.center;
+    const Vec3 u = shape.axis();
+    switch (shape.type) {
+        case QuadricType::plane: return std::abs(d.dot(u));
+        case QuadricType::sphere: return std::abs(d.norm() - shape.radius);
+        case QuadricType::cylinder: return std::abs((d - d.dot(u) * u).norm() - shape.radius);
+        case QuadricType::cone: {
+            // In the half-plane through the axis: distance to the generator on p's nappe,
+            // or to the apex when p lies beyond it.
+            const double h = d.dot(u), rho = (d - h * u).norm();
+            const double c = std::cos(shape.half_angle), s = std::sin(shape.half_angle);
+            const double along = std::abs(h) * c + rho * s;
+            return along >= 0 ? std::abs(rho * c - std::abs(h) * s) : d.norm();
+        }
+        default: throw std::invalid_argument("special_distance: not a special type");
+    }
+}
+
+Quadric special_quadric(const Classification& shape) {
+    const Vec3 u = shape.axis(), c = shape.center;
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
+    Eigen::Matrix3d A;
+    double k = 0;
+    switch (shape.type) {
+        case QuadricType::plane: return normalized(Quadric::plane(u, c));
+        case QuadricType::sphere: A = Eigen::Matrix3d::Identity(), k = -shape.radius * shape.radius; break;
+        case QuadricType::cylinder: A = P, k = -shape.radius * shape.radius; break;
+        case QuadricType::cone: {
+            const double co = std::cos(shape.half_angle), s = std::sin(shape.half_angle);
+            A = co * co * P - s * s * u * u.transpose();
+            break;
+        }
+        default: throw std::invalid_argument("special_quadric: not a special type");
+    }
+    // (p - c)ᵀ A (p - c) + k
+    return normalized(Quadric::from(A, -2 * A * c, c.dot(A * c) + k));
+}
+
+std::optional<SpecialFit> fit_plane_geometric(const Samples& s) {
+    const Vec3 c = weighted_centroid(s);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i) cov += s.weights[i] * (s.points[i] - c) * (s.points[i] - c).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    SpecialFit fit;
+    fit.shape.type = QuadricType::plane;
+    fit.shape.center = c;
+    fit.shape.rotation = frame_with_axis(eig.eigenvectors().col(0));
+    fit.quadric = special_quadric(fit.shape);
+    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
+    return fit;
+}
+
+std::optional<SpecialFit> fit_sphere_geometric(const Samples& s) {
+    // Algebraic start: |p|² = 2 c·p + k, then orthogonal distances.
+    Eigen::Matrix4d AtA = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d Atb = Eigen::Vector4d::Zero();
+    const Vec3 origin = weighted_centroid(s);
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const Vec3 p = s.points[i] - origin;
+        const Eigen::Vector4d row(2 * p.x(), 2 * p.y(), 2 * p.z(), 1);
+        AtA += s.weights[i] * row * row.transpose();
+        Atb += s.weights[i] * row * p.squaredNorm();
+    }
+    const Eigen::Vector4d x = AtA.ldlt().solve(Atb);
+    const double r2 = x[3] + x.head<3>().squaredNorm();
+    if (!(r2 > 0) || !x.allFinite()) return std::nullopt;
+    Eigen::Vector4d theta(origin.x() + x[0], origin.y() + x[1], origin.z() + x[2], std::sqrt(r2));
+    theta = least_squares<4>(
+        s, theta,
+        [](const Eigen::Vector4d& t) {
+            const Vec3 c = t.head<3>();
+            const double r = t[3];
+            return [c, r](const Vec3& p) { return (p - c).norm() - r; };
+        },
+        std::sqrt(r2));
+    SpecialFit fit;
+    fit.shape.type = QuadricType::sphere;
+    fit.shape.center = theta.head<3>();
+    fit.shape.radius = std::abs(theta[3]);
+    fit.quadric = special_quadric(fit.shape);
+    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
+    return fit;
+}
+
+std::optional<SpecialFit> fit_cylinder_geometric(const Samples& s, const Vec3& axis_guess) {
+    // Start: a circle fitted to the samples projected along the guessed axis.
+    const Eigen::Matrix3d frame = frame_with_axis(axis_guess);
+    const Vec3 origin = weighted_centroid(s);
+    Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+    Vec3 Atb = Vec3::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const Vec3 q = frame.transpose() * (s.points[i] - origin);
+        const Vec3 row(2 * q.x(), 2 * q.y(), 1);
+        AtA += s.weights[i] * row * row.transpose();
+        Atb += s.weights[i] * row * (q.x() * q.x() + q.y() * q.y());
+    }
+    const Vec3 x = AtA.ldlt().solve(Atb);
+    const double r2 = x[2] + x[0] * x[0] + x[1] * x[1];
+    if (!(r2 > 0) || !x.allFinite()) return std::nullopt;
+    const Vec3 start = origin + frame.col(0) * x[0] + frame.col(1) * x[1];
+    // θ: axis tilt (2), axis offset (2) in the start frame, radius.
+    auto unpack = [&](const Eigen::Matrix<double, 5, 1>& t, Vec3& point, Vec3& axis) {
+        axis = (frame.col(2) + t[0] * frame.col(0) + t[1] * frame.col(1)).normalized();
+        point = start + t[2] * frame.col(0) + t[3] * frame.col(1);
+    };
+    Eigen::Matrix<double, 5, 1> theta;
+    theta << 0, 0, 0, 0, std::sqrt(r2);
+    theta = least_squares<5>(
+        s, theta,
+        [&](const Eigen::Matrix<double, 5, 1>& t) {
+            Vec3 point, axis;
+            unpack(t, point, axis);
+            const double r = t[4];
+            return [point, axis, r](const Vec3& p) {
+                const Vec3 d = p - point;
+                return (d - d.dot(axis) * axis).norm() - r;
+            };
+        },
+        std::sqrt(r2));
+    Vec3 point, axis;
+    unpack(theta, point, axis);
+    SpecialFit fit;
+    fit.shape.type = QuadricType::cylinder;
+    fit.shape.rotation = frame_with_axis(axis);
+    fit.shape.center = point + (origin - point).dot(axis) * axis;  // the axis point nearest the region
+    fit.shape.radius = std::abs(theta[4]);
+    fit.quadric = special_quadric(fit.shape);
+    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
+    return fit;
+}
+
+std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_guess, const Vec3& apex_guess) {
+    const Eigen::Matrix3d frame = frame_with_axis(axis_guess);
+    // Start: with the guessed axis line, fit ρ = m h + q over the samples (one nappe).
+    double sw = 0, sh = 0, sr = 0, shh = 0, shr = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const Vec3 d = s.points[i] - apex_guess;
+        const double h = d.dot(frame.col(2)), rho = (d - h * frame.col(2)).norm(), w = s.weights[i];
+        sw += w, sh += w * h, sr += w * rho, shh += w * h * h, shr += w * h * rho;
+    }
+    const double det = sw * shh - sh * sh;
+    if (!(std::abs(det) > 0)) return std::nullopt;
+    double m = (sw * shr - sh * sr) / det, q = (sr - m * sh) / sw;
+    Vec3 axis = frame.col(2);
+    if (m < 0) m = -m, axis = -axis;  // open along +axis: ρ = m h' + q with h' = -h
+    if (!(m > 1e-6) || !std::isfinite(q)) return std::nullopt;
+    const Vec3 apex = apex_guess - (q / m) * axis;
+    const double scale = std::sqrt(sr / sw) + 1e-12;
+    // θ: axis tilt (2), apex offset (3), slope tan(half-angle). The slope rather than the
+    // angle keeps sin and cos (whose last bits differ between C libraries) out of the
+    // iteration, so native and WASM builds converge to the same cone.
+    auto unpack = [&](const Eigen::Matrix<double, 6, 1>& t, Vec3& a, Vec3& u) {
+        u = (axis + t[0] * frame.col(0) + t[1] * frame.col(1)).normalized();
+        a = apex + Vec3(t[2], t[3], t[4]);
+    };
+    Eigen::Matrix<double, 6, 1> theta;
+    theta << 0, 0, 0, 0, 0, m;
+    theta = least_squares<6>(
+        s, theta,
+        [&](const Eigen::Matrix<double, 6, 1>& t) {
+            Vec3 a, u;
+            unpack(t, a, u);
+            const double slope = t[5], cosine = 1 / std::sqrt(1 + slope * slope);
+            return [a, u, slope, cosine](const Vec3& p) {
+                const Vec3 d = p - a;
+                const double h = d.dot(u), rho = (d - h * u).norm();
+                return (rho - std::abs(h) * slope) * cosine;
+            };
+        },
+        scale);
+    Vec3 a, u;
+    unpack(theta, a, u);
+    const double alpha = std::atan(theta[5]);
+    if (!(alpha > 1e-4 && alpha < M_PI / 2 - 1e-4)) return std::nullopt;
+    SpecialFit fit;
+    fit.shape.type = QuadricType::cone;
+    fit.shape.center = a;
+    fit.shape.rotation = frame_with_axis(u);
+    fit.shape.half_angle = alpha;
+    fit.quadric = special_quadric(fit.shape);
+    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
+    return fit;
+}
+
+std::optional<SpecialFit> best_special_fit(const Samples& samples, const Quadric& general, double general_rms,
+                                           const SpecialFitOptions& options) {
+    if (samples.points.size() < 6 || !(samples.total_weight > 0)) return std::nullopt;
+    const double limit = (1 + options.relative) * general_rms + options.absolute;
+    auto accept = [&](const std::optional<SpecialFit>& f) { return f && f->rms <= limit; };
+    if (auto plane = fit_plane_geometric(samples); accept(plane)) return plane;
+    if (general.is_plane()) return std::nullopt;
+    if (auto sphere = fit_sphere_geometric(samples); accept(sphere)) return sphere;
+
+    // Axis guesses from the general quadric: the eigenvector of A with the smallest
+    // |eigenvalue| (cylinder), and the one whose eigenvalue's sign stands alone (cone).
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(general.A());
+    const Vec3 lambda = eig.eigenvalues();
+    int flattest = 0;
+    for (int i = 1; i < 3; ++i)
+        if (std::abs(lambda[i]) < std::abs(lambda[flattest])) flattest = i;
+    if (auto cylinder = fit_cylinder_geometric(samples, eig.eigenvectors().col(flattest)); accept(cylinder))
+        return cylinder;
+    const int positives = (lambda.array() > 0).count();
+    if (positives == 1 || positives == 2) {
+        int lone = 0;
+        for (int i = 0; i < 3; ++i)
+            if ((lambda[i] > 0) == (positives == 1)) lone = i;
+        const Eigen::FullPivLU<Eigen::Matrix3d> lu(general.A());
+        if (lu.isInvertible()) {
+            const Vec3 apex = lu.solve(-0.5 * general.b());
+            if (auto cone = fit_cone_geometric(samples, eig.eigenvectors().col(lone), apex); accept(cone)) return cone;
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace vqsa

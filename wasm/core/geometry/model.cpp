@@ -1,0 +1,116 @@
+#include "geometry/model.h"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace vqsa {
+
+namespace {
+
+DualGraph dual_graph(const std::vector<Triangle>& triangles, const std::vector<Vec3>& points) {
+    struct EdgeUse {
+        std::uint64_t key;
+        int face;
+        bool operator<(const EdgeUse& o) const { return key != o.key ? key < o.key : face < o.face; }
+    };
+    const int n = static_cast<int>(triangles.size());
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * std::size_t(n));
+    for (int f = 0; f < n; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const std::uint64_t a = triangles[f][k], b = triangles[f][(k + 1) % 3];
+            uses.push_back({std::min(a, b) << 32 | std::max(a, b), f});
+        }
+    std::sort(uses.begin(), uses.end());
+
+    struct Link {
+        int from, to;
+        double length;
+        bool operator<(const Link& o) const { return from != o.from ? from < o.from : to < o.to; }
+    };
+    std::vector<Link> links;
+    links.reserve(uses.size());
+    for (std::size_t i = 0; i < uses.size();) {
+        std::size_t j = i;
+        while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+        const int a = static_cast<int>(uses[i].key >> 32), b = static_cast<int>(uses[i].key & 0xffffffffu);
+        const double length = (points[a] - points[b]).norm();
+        // A fan of many faces on one edge (hostile input) is linked as a ring, not
+        // as a clique, to keep the graph linear in size.
+        const bool clique = j - i <= 8;
+        for (std::size_t p = i; p < j; ++p)
+            for (std::size_t q = i; q < j; ++q) {
+                if (p == q || uses[p].face == uses[q].face) continue;
+                if (clique || q == (p + 1 - i) % (j - i) + i || p == (q + 1 - i) % (j - i) + i)
+                    links.push_back({uses[p].face, uses[q].face, length});
+            }
+        i = j;
+    }
+    std::sort(links.begin(), links.end());
+    // Two faces sharing two edges (folded pairs) are linked once.
+    links.erase(std::unique(links.begin(), links.end(),
+                            [](const Link& x, const Link& y) { return x.from == y.from && x.to == y.to; }),
+                links.end());
+
+    DualGraph graph;
+    graph.start.assign(n + 1, 0);
+    for (const Link& l : links) ++graph.start[l.from + 1];
+    for (int f = 0; f < n; ++f) graph.start[f + 1] += graph.start[f];
+    graph.neighbor.reserve(links.size());
+    graph.edge_length.reserve(links.size());
+    for (const Link& l : links) {
+        graph.neighbor.push_back(l.to);
+        graph.edge_length.push_back(l.length);
+    }
+    return graph;
+}
+
+int label_components(const DualGraph& graph, std::vector<int>& component) {
+    const int n = static_cast<int>(graph.start.size()) - 1;
+    component.assign(n, -1);
+    std::vector<int> stack;
+    int count = 0;
+    for (int f = 0; f < n; ++f) {
+        if (component[f] >= 0) continue;
+        component[f] = count;
+        stack.push_back(f);
+        while (!stack.empty()) {
+            const int g = stack.back();
+            stack.pop_back();
+            for (int e = graph.begin(g); e < graph.end(g); ++e)
+                if (component[graph.neighbor[e]] < 0) {
+                    component[graph.neighbor[e]] = count;
+                    stack.push_back(graph.neighbor[e]);
+                }
+        }
+        ++count;
+    }
+    return count;
+}
+
+}  // namespace
+
+Model make_model(const Mesh& mesh) {
+    Model model;
+    model.frame = unit_frame(mesh);
+    model.points.reserve(mesh.vertices.size());
+    for (const Vec3& p : mesh.vertices) model.points.push_back(model.frame.to_unit(p));
+    model.triangles = mesh.triangles;
+    const std::size_t n = mesh.triangles.size();
+    model.barycentres.resize(n);
+    model.areas.resize(n);
+    model.moments.resize(n);
+    for (std::size_t f = 0; f < n; ++f) {
+        const Vec3 &a = model.points[mesh.triangles[f][0]], &b = model.points[mesh.triangles[f][1]],
+                   &c = model.points[mesh.triangles[f][2]];
+        model.barycentres[f] = (a + b + c) / 3.0;
+        model.moments[f] = triangle_moments(a, b, c);
+        model.areas[f] = model.moments[f][0];
+        model.total_area += model.areas[f];
+    }
+    model.graph = dual_graph(model.triangles, model.points);
+    model.component_count = label_components(model.graph, model.component);
+    return model;
+}
+
+}  // namespace vqsa

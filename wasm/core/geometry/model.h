@@ -1,0 +1,39 @@
+// The mesh as the algorithms see it: in the unit frame (ALGORITHM §0), with per-face
+// areas, barycentres and moments computed once, and the dual graph.
+#pragma once
+
+#include "io/mesh.h"
+#include "geometry/moments.h"
+
+#include <vector>
+
+namespace vqsa {
+
+// Faces are adjacent when they share an edge (every pair around a non-manifold edge).
+struct DualGraph {
+    std::vector<int> start;         // neighbours of face f: neighbor[start[f] .. start[f+1])
+    std::vector<int> neighbor;
+    std::vector<double> edge_length;  // length of the shared edge, unit frame
+
+    int begin(int f) const { return start[f]; }
+    int end(int f) const { return start[f + 1]; }
+};
+
+struct Model {
+    Frame frame;  // unit frame → input frame
+    std::vector<Vec3> points;
+    std::vector<Triangle> triangles;
+    std::vector<Vec3> barycentres;
+    std::vector<double> areas;
+    std::vector<Moments> moments;
+    DualGraph graph;
+    std::vector<int> component;  // connected component of each face
+    int component_count = 0;
+    double total_area = 0;
+
+    int face_count() const { return static_cast<int>(triangles.size()); }
+};
+
+Model make_model(const Mesh& mesh);
+
+}  // namespace vqsa

@@ -1,0 +1,100 @@
+#include "lloyd/flooding.h"
+
+#include "fitting/distance.h"
+
+#include <cstring>
+
+namespace vqsa {
+
+void FaceErrors::reset(const Model& model, const std::vector<Quadric>& proxies) {
+    model_ = &model;
+    proxies_ = &proxies;
+    hessian_norms_.resize(proxies.size());
+    for (std::size_t p = 0; p < proxies.size(); ++p) hessian_norms_[p] = proxies[p].hessian_norm();
+    if (tag_.size() != model.points.size()) {
+        tag_.assign(model.points.size(), ~std::uint64_t{0});
+        distance2_.assign(model.points.size(), 0.0);
+    }
+    ++generation_;
+    known_labels_ = nullptr;
+    known_errors_ = nullptr;
+}
+
+double FaceErrors::vertex_distance2(int vertex, int proxy) {
+    const std::uint64_t tag = generation_ << 32 | static_cast<std::uint32_t>(proxy);
+    if (tag_[vertex] != tag) {
+        const double d = taubin_distance((*proxies_)[proxy], hessian_norms_[proxy], model_->points[vertex]);
+        distance2_[vertex] = d * d;
+        tag_[vertex] = tag;
+    }
+    return distance2_[vertex];
+}
+
+double FaceErrors::compute(int face, int proxy) {
+    const Triangle& t = model_->triangles[face];
+    const double g = taubin_distance((*proxies_)[proxy], hessian_norms_[proxy], model_->barycentres[face]);
+    return 0.25 * model_->areas[face] *
+           (vertex_distance2(t[0], proxy) + vertex_distance2(t[1], proxy) + vertex_distance2(t[2], proxy) + g * g);
+}
+
+void Flooding::push(const Entry& e) {
+    heap_.push_back(e);
+    std::size_t i = heap_.size() - 1;
+    while (i > 0) {
+        const std::size_t parent = (i - 1) / 2;
+        if (!(heap_[parent] > e)) break;
+        heap_[i] = heap_[parent];
+        i = parent;
+    }
+    heap_[i] = e;
+}
+
+Flooding::Entry Flooding::pop() {
+    const Entry top = heap_.front();
+    const Entry last = heap_.back();
+    heap_.pop_back();
+    const std::size_t n = heap_.size();
+    if (n == 0) return top;
+    std::size_t i = 0;
+    for (;;) {
+        std::size_t child = 2 * i + 1;
+        if (child >= n) break;
+        if (child + 1 < n && heap_[child] > heap_[child + 1]) ++child;
+        if (!(last > heap_[child])) break;
+        heap_[i] = heap_[child];
+        i = child;
+    }
+    heap_[i] = last;
+    return top;
+}
+
+void Flooding::run(const Model& model, FaceErrors& errors, const std::vector<int>& seeds, std::vector<int>& labels) {
+    const DualGraph& graph = model.graph;
+    queued_.assign(2 * labels.size(), -1);
+    heap_.clear();
+
+    auto queue_neighbours = [&](int face, int proxy) {
+        for (int e = graph.begin(face); e < graph.end(face); ++e) {
+            const int n = graph.neighbor[e];
+            if (labels[n] >= 0 || queued_[2 * n] == proxy || queued_[2 * n + 1] == proxy) continue;
+            queued_[2 * n + 1] = queued_[2 * n];
+            queued_[2 * n] = proxy;
+            const float error = static_cast<float>(errors(n, proxy));
+            std::uint32_t bits;
+            std::memcpy(&bits, &error, sizeof bits);
+            push({std::uint64_t{bits} << 32 | static_cast<std::uint32_t>(n), proxy});
+        }
+    };
+
+    for (std::size_t p = 0; p < seeds.size(); ++p) labels[seeds[p]] = static_cast<int>(p);
+    for (std::size_t p = 0; p < seeds.size(); ++p) queue_neighbours(seeds[p], static_cast<int>(p));
+    while (!heap_.empty()) {
+        const Entry e = pop();
+        const int face = static_cast<int>(e.key & 0xffffffffu);
+        if (labels[face] >= 0) continue;
+        labels[face] = e.proxy;
+        queue_neighbours(face, e.proxy);
+    }
+}
+
+}  // namespace vqsa

@@ -1,0 +1,177 @@
+#include "post/project.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <array>
+#include <complex>
+#include <limits>
+#include <cmath>
+
+namespace vqsa {
+
+namespace {
+
+using Poly = std::array<double, 7>;  // coefficients, lowest degree first
+
+Poly multiply(const Poly& a, double c0, double c1) {
+    Poly out{};
+    for (int k = 0; k < 7; ++k) {
+        out[k] += a[k] * c0;
+        if (k + 1 < 7) out[k + 1] += a[k] * c1;
+    }
+    return out;
+}
+
+double evaluate(const Poly& a, double x) {
+    double v = 0;
+    for (int k = 6; k >= 0; --k) v = v * x + a[k];
+    return v;
+}
+
+double derivative(const Poly& a, double x) {
+    double v = 0;
+    for (int k = 6; k >= 1; --k) v = v * x + k * a[k];
+    return v;
+}
+
+// Newton steps onto {f = 0} along the gradient: removes the last rounding of a foot point.
+Vec3 polish(const Quadric& f, Vec3 x) {
+    for (int i = 0; i < 3; ++i) {
+        const Vec3 g = f.gradient(x);
+        const double g2 = g.squaredNorm();
+        if (!(g2 > 0)) break;
+        x -= f.value(x) / g2 * g;
+    }
+    return x;
+}
+
+}  // namespace
+
+std::optional<Vec3> foot_point(const Quadric& f, const Vec3& p) {
+    if (f.is_plane()) {
+        const Vec3 n = f.b();
+        return p - (f.value(p) / n.squaredNorm()) * n;
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(f.A());
+    const Eigen::Matrix3d R = eig.eigenvectors();
+    const Vec3 lambda = eig.eigenvalues(), beta = R.transpose() * f.b(), y = R.transpose() * p;
+    const double c = f.c[0];
+
+    // P(μ) = Σ λ_i N_i² Π_{j≠i} D_j² + Σ β_i N_i D_i Π_{j≠i} D_j² + c Π D_j²,
+    // N_i = y_i − μ β_i / 2, D_i = 1 + μ λ_i.
+    Poly P{};
+    for (int i = 0; i < 3; ++i) {
+        Poly others{};
+        others[0] = 1;
+        for (int j = 0; j < 3; ++j)
+            if (j != i) others = multiply(multiply(others, 1, lambda[j]), 1, lambda[j]);
+        const Poly quadratic = multiply(multiply(others, y[i], -0.5 * beta[i]), y[i], -0.5 * beta[i]);
+        const Poly linear = multiply(multiply(others, y[i], -0.5 * beta[i]), 1, lambda[i]);
+        for (int k = 0; k < 7; ++k) P[k] += lambda[i] * quadratic[k] + beta[i] * linear[k];
+    }
+    Poly all{};
+    all[0] = 1;
+    for (int j = 0; j < 3; ++j) all = multiply(multiply(all, 1, lambda[j]), 1, lambda[j]);
+    for (int k = 0; k < 7; ++k) P[k] += c * all[k];
+
+    double largest = 0;
+    for (double a : P) largest = std::max(largest, std::abs(a));
+    int degree = 6;
+    while (degree > 0 && std::abs(P[degree]) <= 1e-14 * largest) --degree;
+
+    std::vector<double> roots;
+    if (degree == 1) {
+        roots.push_back(-P[0] / P[1]);
+    } else if (degree > 1) {
+        Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);
+        for (int k = 0; k < degree; ++k) companion(0, k) = -P[degree - 1 - k] / P[degree];
+        for (int k = 1; k < degree; ++k) companion(k, k - 1) = 1;
+        Eigen::EigenSolver<Eigen::MatrixXd> solver(companion, false);
+        for (int k = 0; k < degree; ++k) {
+            const std::complex<double> r = solver.eigenvalues()[k];
+            if (std::abs(r.imag()) <= 1e-6 * (1 + std::abs(r.real()))) roots.push_back(r.real());
+        }
+    }
+
+    std::optional<Vec3> best;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (double mu : roots) {
+        for (int it = 0; it < 8; ++it) {  // Newton on P
+            const double d = derivative(P, mu);
+            if (d == 0) break;
+            const double step = evaluate(P, mu) / d;
+            mu -= step;
+            if (std::abs(step) <= 1e-15 * (1 + std::abs(mu))) break;
+        }
+        Vec3 x;
+        bool pole = false;
+        for (int i = 0; i < 3; ++i) {
+            const double D = 1 + mu * lambda[i];
+            if (std::abs(D) < 1e-12) pole = true;
+            x[i] = (y[i] - 0.5 * mu * beta[i]) / D;
+        }
+        if (pole || !x.allFinite()) continue;
+        const Vec3 candidate = polish(f, R * x);
+        const double distance = (candidate - p).norm();
+        if (candidate.allFinite() && distance < best_distance) best_distance = distance, best = candidate;
+    }
+    return best;
+}
+
+Vec3 special_foot_point(const Classification& shape, const Vec3& p) {
+    const Vec3 u = shape.axis(), d = p - shape.center;
+    switch (shape.type) {
+        case QuadricType::plane: return p - d.dot(u) * u;
+        case QuadricType::sphere: {
+            const double r = d.norm();
+            return r > 0 ? shape.center + shape.radius / r * d : shape.center + shape.radius * u;
+        }
+        case QuadricType::cylinder: {
+            const Vec3 on_axis = shape.center + d.dot(u) * u;
+            Vec3 radial = p - on_axis;
+            const double r = radial.norm();
+            radial = r > 0 ? Vec3(radial / r) : Vec3(shape.rotation.col(0));
+            return on_axis + shape.radius * radial;
+        }
+        case QuadricType::cone: {
+            // In the half-plane through the axis and p: the generator of p's nappe.
+            const double h = d.dot(u);
+            Vec3 radial = d - h * u;
+            const double rho = radial.norm();
+            radial = rho > 0 ? Vec3(radial / rho) : Vec3(shape.rotation.col(0));
+            const Vec3 generator = (h >= 0 ? 1.0 : -1.0) * std::cos(shape.half_angle) * u + std::sin(shape.half_angle) * radial;
+            const double t = std::max(0.0, d.dot(generator));
+            return shape.center + t * generator;
+        }
+        default: throw std::invalid_argument("special_foot_point: not a special type");
+    }
+}
+
+std::vector<Vec3> project_vertices(const Model& model, const std::vector<int>& labels,
+                                   const std::vector<ProjectionTarget>& targets, double max_distance) {
+    const std::size_t n = model.points.size();
+    // Each vertex's distinct proxies, from its faces.
+    std::vector<std::vector<int>> proxies_of(n);
+    for (int f = 0; f < model.face_count(); ++f)
+        for (int v : model.triangles[f]) {
+            std::vector<int>& list = proxies_of[v];
+            if (std::find(list.begin(), list.end(), labels[f]) == list.end()) list.push_back(labels[f]);
+        }
+    std::vector<Vec3> out(model.points);
+    for (std::size_t v = 0; v < n; ++v) {
+        Vec3 sum = Vec3::Zero();
+        int count = 0;
+        for (int proxy : proxies_of[v]) {
+            const ProjectionTarget& t = targets[proxy];
+            const Vec3& p = model.points[v];
+            const std::optional<Vec3> foot = t.special ? std::optional<Vec3>(special_foot_point(*t.special, p))
+                                                       : foot_point(t.quadric, p);
+            if (foot && (*foot - p).norm() <= max_distance) sum += *foot, ++count;
+        }
+        if (count > 0) out[v] = sum / count;
+    }
+    return out;
+}
+
+}  // namespace vqsa
