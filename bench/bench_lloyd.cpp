@@ -1,7 +1,8 @@
-// Times the Lloyd stage (everything the engine does up to the proxy count) on the
+// Times the Lloyd stage (building the model and everything up to the proxy count) on the
 // shared meshes: `vqsa_bench [MESH_DIR] [RUNS]`. Prints the median of RUNS runs.
-#include "lloyd/engine.h"
+#include "geometry/model.h"
 #include "io/mesh_io.h"
+#include "lloyd/lloyd.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,14 +22,15 @@ int main(int argc, char** argv) {
         double rms = 0;
         for (int r = 0; r < runs; ++r) {
             const auto t0 = std::chrono::steady_clock::now();
-            vqsa::EngineOptions options;
+            const vqsa::Model model = vqsa::make_model(mesh);
+            vqsa::LloydOptions options;
             options.proxies = proxies;
-            options.smooth = options.refit = options.project = false;  // the Lloyd stage alone
-            vqsa::Engine engine(mesh, options);
-            engine.run();
+            vqsa::Lloyd lloyd(model, options);
+            while (lloyd.step()) {
+            }
             times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-            iterations = engine.iterations();
-            rms = engine.rms();
+            iterations = lloyd.iterations();
+            rms = lloyd.rms();
         }
         std::sort(times.begin(), times.end());
         std::printf("%-18s %7zu %7d %10.3f %7d %12.4e\n", name, mesh.triangles.size(), proxies, times[times.size() / 2],

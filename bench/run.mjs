@@ -14,6 +14,7 @@ const root = join(dirname(fileURLToPath(import.meta.url)), '..');
 const meshes = process.env.VQSA_MESHES ?? join(root, '..', 'shared', 'meshes');
 const native = join(root, 'build', 'native', 'wasm', 'vqsa');
 const peer = join(root, 'build', 'bench', 'bench', 'planar_vsa');
+const wasmCli = join(root, 'build', 'wasm', 'wasm', 'vqsa-cli.js');
 const RUNS = Number(process.env.VQSA_BENCH_RUNS ?? 3);
 const work = mkdtempSync(join(tmpdir(), 'vqsa-bench-'));
 
@@ -59,16 +60,11 @@ const vqsa = await loadVqsa();
 function runWasm(bytes, name, proxies) {
   const session = new vqsa.Session();
   session.load(bytes, name);
-  const t0 = performance.now();
   session.start({ proxies });
-  let lloydEnd = 0;
-  for (let more = true; more;) {
-    more = session.stepFor(1000);
-    if (!lloydEnd && session.progress().lloydDone) lloydEnd = performance.now();
-  }
-  const end = performance.now();
+  while (session.stepFor(1000)) {}
+  const { timing_s: timing } = JSON.parse(session.report());
   session.delete();
-  return { lloyd: (lloydEnd - t0) / 1000, post: (end - lloydEnd) / 1000 };
+  return { lloyd: timing.lloyd, post: timing.postprocess };
 }
 
 // ---- 1. the paper's meshes at the paper's counts --------------------------------------------
@@ -112,7 +108,7 @@ for (const faces of scalingFaces) {
   const input = `example:turned_part:${faces}`;
   const runs = faces <= 160000 ? RUNS : 1;
   const n = Array.from({ length: runs }, () => measuredRun([native], [input, '--proxies', '50']));
-  const w = Array.from({ length: runs }, () => measuredRun([process.execPath, join(root, 'wasm', 'node', 'cli.mjs')], [input, '--proxies', '50']));
+  const w = Array.from({ length: runs }, () => measuredRun([process.execPath, wasmCli], [input, '--proxies', '50']));
   scaling.push({
     faces: n[0].report.input.faces, runs,
     nativeLloyd: median(n.map((x) => x.report.timing_s.lloyd)), nativeTotal: median(n.map((x) => x.report.timing_s.total)),

@@ -1,9 +1,9 @@
 // The bad-input corpus (tests/bad_inputs): each file fails with a clear message or runs
 // to finite results. The WASM build is held to the same file in tests/node.
-#include "lloyd/engine.h"
 #include "export/gltf_export.h"
-#include "io/mesh_io.h"
 #include "export/report.h"
+#include "io/mesh_io.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -54,31 +54,24 @@ TEST(BadInputs, EachFailsClearlyOrRunsToFiniteResults) {
         }
         const Mesh mesh = read_mesh_file(path);
         EXPECT_EQ(static_cast<int>(mesh.triangles.size()), want["faces_used"].get<int>());
-        EngineOptions options;
-        options.proxies = want["request"];
-        Engine engine(mesh, options);
-        engine.run();
-        EXPECT_EQ(static_cast<int>(engine.proxies().size()), want["proxies"].get<int>());
-        const nlohmann::json report = make_report(mesh, engine, {});
+        const Result result = test::approximate(mesh, test::with_proxies(want["request"]));
+        EXPECT_EQ(static_cast<int>(result.proxies.size()), want["proxies"].get<int>());
+        const nlohmann::json report = make_report(result);
         EXPECT_TRUE(all_finite(report)) << report.dump().substr(0, 400);
-        ASSERT_TRUE(engine.metrics().has_value());
-        for (int l : engine.face_labels()) ASSERT_GE(l, 0);
-        for (const Vec3& p : engine.projected_vertices()) ASSERT_TRUE(p.allFinite());
-        EXPECT_GT(export_glb(mesh, engine).size(), 100u);
+        ASSERT_TRUE(result.metrics.has_value());
+        for (int l : result.face_labels) ASSERT_GE(l, 0);
+        for (const Vec3& p : result.projected) ASSERT_TRUE(p.allFinite());
+        EXPECT_GT(export_glb(mesh, result).size(), 100u);
     }
 }
 
 TEST(BadInputs, FarAndTinyMeshesGiveTheSameShapeAtTheirScale) {
     const Mesh far = read_mesh_file(corpus + "/far_away.off"), tiny = read_mesh_file(corpus + "/tiny.off");
-    EngineOptions options;
-    options.proxies = 3;
-    Engine a(far, options), b(tiny, options);
-    a.run();
-    b.run();
-    for (const auto* e : {&a, &b}) {
+    const Result a = test::approximate(far, test::with_proxies(3)), b = test::approximate(tiny, test::with_proxies(3));
+    for (const Result* e : {&a, &b}) {
         int planes = 0, cylinders = 0;
         for (int i = 0; i < 3; ++i) {
-            const Classification c = e->classification(i);
+            const Classification& c = e->proxies[i].shape;
             planes += c.type == QuadricType::plane;
             if (c.type == QuadricType::cylinder) {
                 ++cylinders;
@@ -94,28 +87,25 @@ TEST(BadInputs, FarAndTinyMeshesGiveTheSameShapeAtTheirScale) {
 
 TEST(BadInputs, OptionsOutOfRangeAreRejected) {
     const Mesh mesh = read_mesh_file(corpus + "/far_away.off");
-    auto message = [&](EngineOptions o) {
+    auto message = [&](Options o) {
         try {
-            Engine e(mesh, o);
+            Pipeline p(mesh, o);
         } catch (const std::invalid_argument& e) {
             return std::string(e.what());
         }
         return std::string();
     };
-    EngineOptions zero;
+    Options zero;
     EXPECT_NE(message(zero).find("give a proxy count"), std::string::npos);
-    EngineOptions negative;
-    negative.tolerance = -0.1;
+    Options negative;
+    negative.lloyd.tolerance = -0.1;
     EXPECT_NE(message(negative).find("tolerance"), std::string::npos);
-    EngineOptions huge;
-    huge.proxies = 1000000;
+    Options huge = test::with_proxies(1000000);
     EXPECT_NE(message(huge).find("exceeds the number of faces"), std::string::npos);
-    EngineOptions rings;
-    rings.proxies = 3;
+    Options rings = test::with_proxies(3);
     rings.smoothing.rings = 0;
     EXPECT_NE(message(rings).find("rings"), std::string::npos);
-    EngineOptions lambda;
-    lambda.proxies = 3;
+    Options lambda = test::with_proxies(3);
     lambda.smoothing.lambda = std::nan("");
     EXPECT_NE(message(lambda).find("lambda"), std::string::npos);
 }

@@ -1,5 +1,5 @@
 #include "fitting/distance.h"
-#include "lloyd/engine.h"
+#include "geometry/model.h"
 #include "io/mesh_io.h"
 #include "geometry/model.h"
 #include "shapes.h"
@@ -11,14 +11,16 @@
 #include <set>
 
 using namespace vqsa;
+using test::approximate;
+using test::with_proxies;
 
 namespace {
 
 // Fraction of the area whose region is, by majority, the region of its true patch.
-double area_on_true_patch(const Engine& engine, const Shape& shape) {
-    const Model& m = engine.model();
+double area_on_true_patch(const Result& result, const Shape& shape) {
+    const Model m = make_model(shape.mesh);
     std::map<std::pair<int, int>, double> overlap;  // (region, patch) → area
-    for (int f = 0; f < m.face_count(); ++f) overlap[{engine.face_labels()[f], shape.patch[f]}] += m.areas[f];
+    for (int f = 0; f < m.face_count(); ++f) overlap[{result.face_labels[f], shape.patch[f]}] += m.areas[f];
     std::map<int, std::pair<double, int>> best;  // region → (area, patch)
     for (const auto& [key, area] : overlap)
         if (area > best[key.first].first) best[key.first] = {area, key.second};
@@ -32,9 +34,9 @@ double area_on_true_patch(const Engine& engine, const Shape& shape) {
     return patches_used.size() == best.size() ? right / m.total_area : 0.0;
 }
 
-bool regions_connected(const Engine& engine) {
-    const Model& m = engine.model();
-    const std::vector<int>& labels = engine.face_labels();
+bool regions_connected(const Mesh& mesh, const Result& result) {
+    const Model m = make_model(mesh);
+    const std::vector<int>& labels = result.face_labels;
     std::vector<int> seen(m.face_count(), 0);
     std::set<int> visited_regions;
     for (int f = 0; f < m.face_count(); ++f) {
@@ -54,13 +56,6 @@ bool regions_connected(const Engine& engine) {
     return true;
 }
 
-EngineOptions with_proxies(int n, std::uint64_t seed = 1) {
-    EngineOptions o;
-    o.proxies = n;
-    o.seed = seed;
-    return o;
-}
-
 }  // namespace
 
 TEST(Engine, CapsuleSplitsIntoCylinderAndTwoCaps) {
@@ -68,11 +63,10 @@ TEST(Engine, CapsuleSplitsIntoCylinderAndTwoCaps) {
     for (int pose = 0; pose < 3; ++pose) {
         Shape capsule = make_capsule(0.7, 2.0, 64, 16);
         transform(capsule.mesh, test::random_rotation(rng), Vec3(1, -2, 0.5) * pose);
-        Engine engine(capsule.mesh, with_proxies(3, pose + 1));
-        engine.run();
-        ASSERT_EQ(engine.proxies().size(), 3u);
-        EXPECT_GE(area_on_true_patch(engine, capsule), 0.98) << "pose " << pose;
-        EXPECT_TRUE(regions_connected(engine));
+        const Result r = approximate(capsule.mesh, with_proxies(3, pose + 1));
+        ASSERT_EQ(r.proxies.size(), 3u);
+        EXPECT_GE(area_on_true_patch(r, capsule), 0.98) << "pose " << pose;
+        EXPECT_TRUE(regions_connected(capsule.mesh, r));
     }
 }
 
@@ -81,12 +75,11 @@ TEST(Engine, ClosedCylinderSplitsIntoSideAndTwoDisks) {
     for (int pose = 0; pose < 3; ++pose) {
         Shape cylinder = make_closed_cylinder(0.5, 1.5, 64, 12);
         transform(cylinder.mesh, test::random_rotation(rng), Vec3(-3, 0.5, 2) * pose);
-        Engine engine(cylinder.mesh, with_proxies(3, pose + 7));
-        engine.run();
-        ASSERT_EQ(engine.proxies().size(), 3u);
-        EXPECT_GE(area_on_true_patch(engine, cylinder), 0.98) << "pose " << pose;
+        const Result r = approximate(cylinder.mesh, with_proxies(3, pose + 7));
+        ASSERT_EQ(r.proxies.size(), 3u);
+        EXPECT_GE(area_on_true_patch(r, cylinder), 0.98) << "pose " << pose;
         int planes = 0;
-        for (int i = 0; i < 3; ++i) planes += engine.classification(i).type == QuadricType::plane;
+        for (const ProxyResult& p : r.proxies) planes += p.type == QuadricType::plane;
         EXPECT_EQ(planes, 2);
     }
 }
@@ -98,111 +91,99 @@ TEST(Engine, SameSeedSameLabelsAndEveryComponentGetsAProxy) {
     append(soup, make_capsule(0.3, 2, 32, 8).mesh, Vec3(3, 0, 0));
     append(soup, make_closed_cylinder(0.4, 1, 32, 6).mesh, Vec3(0, 4, 0));
     const Mesh mesh = build_mesh(soup);
+    const Model model = make_model(mesh);
 
-    Engine first(mesh, with_proxies(8, 42)), second(mesh, with_proxies(8, 42));
-    first.run();
-    second.run();
-    EXPECT_EQ(first.model().component_count, 3);
-    EXPECT_EQ(first.labels(), second.labels());
-    std::set<int> regions_per_component[3];
-    for (int f = 0; f < first.model().face_count(); ++f)
-        regions_per_component[first.model().component[f]].insert(first.face_labels()[f]);
-    for (const auto& regions : regions_per_component) EXPECT_GE(regions.size(), 1u);
-    EXPECT_TRUE(regions_connected(first));
+    const Result first = approximate(mesh, with_proxies(8, 42)), second = approximate(mesh, with_proxies(8, 42));
+    EXPECT_EQ(model.component_count, 3);
+    EXPECT_EQ(first.labels, second.labels);
+    EXPECT_TRUE(regions_connected(mesh, first));
 
     // Fewer proxies than components still covers every component.
-    Engine few(mesh, with_proxies(1));
-    few.run();
-    EXPECT_EQ(few.proxies().size(), 3u);
-    for (int l : few.labels()) EXPECT_GE(l, 0);
+    const Result few = approximate(mesh, with_proxies(1));
+    EXPECT_EQ(few.proxies.size(), 3u);
+    std::set<int> regions_per_component[3];
+    for (int f = 0; f < model.face_count(); ++f) regions_per_component[model.component[f]].insert(few.face_labels[f]);
+    for (const auto& regions : regions_per_component) EXPECT_EQ(regions.size(), 1u);
 }
 
 TEST(Engine, FandiskReachesTwentyTwoProxiesWithConnectedRegions) {
     const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
     int insertions = 0, events = 0;
-    Engine engine(mesh, with_proxies(22));
-    engine.run([&](const ProgressEvent& e, const Engine& eng) {
+    const Result r = approximate(mesh, with_proxies(22), [&](const Progress& p) {
         ++events;
-        insertions += e.phase == Phase::insert;
-        EXPECT_EQ(e.proxies, static_cast<int>(eng.proxies().size()));
+        insertions += std::string(p.phase) == "insert";
         return true;
     });
-    EXPECT_EQ(engine.stop_reason(), StopReason::proxies);
-    EXPECT_EQ(engine.proxies().size(), 22u);
+    EXPECT_EQ(r.stop_reason, StopReason::proxies);
+    EXPECT_EQ(r.proxies.size(), 22u);
     EXPECT_GT(insertions, 10);
     EXPECT_GT(events, insertions);
-    EXPECT_TRUE(regions_connected(engine));
+    EXPECT_TRUE(regions_connected(mesh, r));
     // Planar VSA with 80 proxies reaches about 1.4e-3 of the diagonal; quadrics at 22 do much better.
-    EXPECT_LT(engine.rms(), 1.5e-3);
-    const std::vector<int> labels = engine.labels();
-    ASSERT_EQ(labels.size(), 12946u);
-    for (int l : labels) ASSERT_TRUE(l >= 0 && l < 22);
+    EXPECT_LT(r.rms_error_relative, 1.5e-3);
+    ASSERT_EQ(r.labels.size(), 12946u);
+    for (int l : r.labels) ASSERT_TRUE(l >= 0 && l < 22);
 }
 
 TEST(Engine, StopsOnToleranceAndReportsIt) {
     Shape capsule = make_capsule(0.7, 2.0, 48, 12);
-    EngineOptions o;
-    o.tolerance = 1e-3;
-    Engine engine(capsule.mesh, o);
-    engine.run();
-    EXPECT_EQ(engine.stop_reason(), StopReason::tolerance);
-    EXPECT_LE(engine.rms(), 1e-3);
+    Options o;
+    o.lloyd.tolerance = 1e-3;
+    o.smooth = false;  // the Lloyd stage's own error
+    const Result r = approximate(capsule.mesh, o);
+    EXPECT_EQ(r.stop_reason, StopReason::tolerance);
+    EXPECT_LE(r.rms_error_relative, 1e-3);
 }
 
 TEST(Engine, CancelFromTheCallbackStopsWithAConsistentPartition) {
     Shape capsule = make_capsule(0.7, 2.0, 48, 12);
-    Engine engine(capsule.mesh, with_proxies(12));
     int calls = 0;
-    engine.run([&](const ProgressEvent&, const Engine&) { return ++calls < 5; });
-    EXPECT_EQ(engine.stop_reason(), StopReason::cancelled);
+    const Result r = approximate(capsule.mesh, with_proxies(12), [&](const Progress&) { return ++calls < 5; });
+    EXPECT_EQ(r.stop_reason, StopReason::cancelled);
     EXPECT_EQ(calls, 5);
-    for (int l : engine.face_labels()) EXPECT_TRUE(l >= 0 && l < static_cast<int>(engine.proxies().size()));
+    for (int l : r.face_labels) EXPECT_TRUE(l >= 0 && l < static_cast<int>(r.proxies.size()));
 }
 
 TEST(Engine, IterationCapIsHonoured) {
     Shape capsule = make_capsule(0.7, 2.0, 48, 12);
-    EngineOptions o = with_proxies(30);
-    o.max_iterations = 7;
-    Engine engine(capsule.mesh, o);
-    engine.run();
-    EXPECT_EQ(engine.stop_reason(), StopReason::max_iterations);
-    EXPECT_LE(engine.iterations(), 8);
+    Options o = with_proxies(30);
+    o.lloyd.max_iterations = 7;
+    const Result r = approximate(capsule.mesh, o);
+    EXPECT_EQ(r.stop_reason, StopReason::max_iterations);
+    EXPECT_LE(r.iterations, 8);
 }
 
 TEST(Engine, RejectsBadOptions) {
     Shape capsule = make_capsule(0.7, 2.0, 16, 4);
-    EngineOptions none;
-    EXPECT_THROW(Engine(capsule.mesh, none), std::invalid_argument);
-    EngineOptions negative;
-    negative.tolerance = -1;
-    EXPECT_THROW(Engine(capsule.mesh, negative), std::invalid_argument);
-    EXPECT_THROW(Engine(capsule.mesh, with_proxies(1000000)), std::invalid_argument);
+    Options none;
+    EXPECT_THROW(Pipeline(capsule.mesh, none), std::invalid_argument);
+    Options negative;
+    negative.lloyd.tolerance = -1;
+    EXPECT_THROW(Pipeline(capsule.mesh, negative), std::invalid_argument);
+    EXPECT_THROW(Pipeline(capsule.mesh, with_proxies(1000000)), std::invalid_argument);
 }
 
 TEST(Engine, ResultsAreInInputCoordinates) {
     // The same shape, scaled and moved: quadrics follow, relative errors do not change.
     Shape a = make_closed_cylinder(0.5, 1.5, 48, 8), b = a;
     transform(b.mesh, Eigen::Matrix3d::Identity() * 1000.0, Vec3(1e5, -2e5, 3e5));
-    Engine ea(a.mesh, with_proxies(3)), eb(b.mesh, with_proxies(3));
-    ea.run();
-    eb.run();
+    const Result ea = approximate(a.mesh, with_proxies(3)), eb = approximate(b.mesh, with_proxies(3));
     // The same partition (rounding may renumber the regions).
     std::map<int, int> to_b;
-    for (int f = 0; f < ea.model().face_count(); ++f) {
-        const auto [it, inserted] = to_b.try_emplace(ea.face_labels()[f], eb.face_labels()[f]);
-        ASSERT_EQ(it->second, eb.face_labels()[f]) << "face " << f;
+    for (std::size_t f = 0; f < ea.face_labels.size(); ++f) {
+        const auto [it, inserted] = to_b.try_emplace(ea.face_labels[f], eb.face_labels[f]);
+        ASSERT_EQ(it->second, eb.face_labels[f]) << "face " << f;
     }
     ASSERT_EQ(to_b.size(), 3u);
-    EXPECT_NEAR(ea.rms(), eb.rms(), 1e-9);
+    EXPECT_NEAR(ea.rms_error_relative, eb.rms_error_relative, 1e-9);
     for (int i = 0; i < 3; ++i) {
-        const Classification ca = ea.classification(i), cb = eb.classification(to_b[i]);
-        EXPECT_EQ(ca.type, cb.type);
-        if (ca.type == QuadricType::cylinder) EXPECT_NEAR(cb.radius, 1000 * ca.radius, 1e-6 * cb.radius);
+        const ProxyResult &pa = ea.proxies[i], &pb = eb.proxies[to_b[i]];
+        EXPECT_EQ(pa.type, pb.type);
+        if (pa.type == QuadricType::cylinder) EXPECT_NEAR(pb.shape.radius, 1000 * pa.shape.radius, 1e-6 * pb.shape.radius);
         // Every input vertex of the region satisfies the input-frame quadric.
-        const Quadric q = eb.input_quadric(to_b[i]);
-        for (int f = 0; f < eb.model().face_count(); f += 37)
-            if (eb.face_labels()[f] == to_b[i])
-                EXPECT_LT(taubin_distance(q, b.mesh.vertices[b.mesh.triangles[f][0]]), 1e-3 * 1000);
+        for (std::size_t f = 0; f < eb.face_labels.size(); f += 37)
+            if (eb.face_labels[f] == to_b[i])
+                EXPECT_LT(taubin_distance(pb.quadric, b.mesh.vertices[b.mesh.triangles[f][0]]), 1e-3 * 1000);
     }
 }
 
@@ -218,36 +199,37 @@ TEST(Engine, ARegionOnTwoPlanesIsSplit) {
     ASSERT_EQ(make_model(mesh).component_count, 1);
 
     bool split_seen = false;
-    Engine engine(mesh, with_proxies(2));
-    engine.run([&](const ProgressEvent& e, const Engine&) {
-        split_seen |= e.phase == Phase::split;
+    const Result r = approximate(mesh, with_proxies(2), [&](const Progress& p) {
+        split_seen |= std::string(p.phase) == "split";
         return true;
     });
     EXPECT_TRUE(split_seen);
-    ASSERT_EQ(engine.proxies().size(), 2u);
+    ASSERT_EQ(r.proxies.size(), 2u);
     // Each plane is one region, and both are planes.
-    const std::vector<int>& labels = engine.face_labels();
+    const std::vector<int>& labels = r.face_labels;
     const int floor_faces = static_cast<int>(floor.mesh.triangles.size());
-    for (int f = 0; f < engine.model().face_count(); ++f) EXPECT_EQ(labels[f], labels[f < floor_faces ? 0 : floor_faces]);
+    for (std::size_t f = 0; f < labels.size(); ++f) EXPECT_EQ(labels[f], labels[int(f) < floor_faces ? 0 : floor_faces]);
     EXPECT_NE(labels[0], labels[floor_faces]);
-    for (int i = 0; i < 2; ++i) EXPECT_EQ(engine.classification(i).type, QuadricType::plane);
-    EXPECT_LT(engine.rms(), 1e-9);
+    for (const ProxyResult& p : r.proxies) EXPECT_EQ(p.type, QuadricType::plane);
+    EXPECT_LT(r.rms_error_relative, 1e-9);
 }
 
 TEST(Engine, TeleportsNeverLeaveTheEnergyHigher) {
-    const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
+    const Model model = make_model(read_mesh_file(test::shared_mesh("fandisk.off")));
+    LloydOptions options;
+    options.proxies = 22;
+    Lloyd lloyd(model, options);
     double before_teleports = -1;
     int teleports = 0;
-    Engine engine(mesh, with_proxies(22));
-    engine.run([&](const ProgressEvent& e, const Engine& eng) {
-        teleports += e.phase == Phase::teleport;
+    while (lloyd.step()) {
+        teleports += lloyd.last_operation() == Operation::teleport;
         // The last converged state at the target count, before any teleport.
-        if (e.phase == Phase::lloyd && e.proxies == 22 && teleports == 0) before_teleports = eng.energy();
-        return true;
-    });
+        if (lloyd.last_operation() == Operation::iterate && lloyd.proxies().size() == 22 && teleports == 0)
+            before_teleports = lloyd.energy();
+    }
     ASSERT_GT(teleports, 0);
     ASSERT_GT(before_teleports, 0);
-    EXPECT_LE(engine.energy(), before_teleports);
+    EXPECT_LE(lloyd.energy(), before_teleports);
 }
 
 TEST(Engine, NonManifoldEdgesAndOpenBoundariesWork) {
@@ -259,20 +241,18 @@ TEST(Engine, NonManifoldEdgesAndOpenBoundariesWork) {
         append(soup, make_grid([&](double u, double v) -> Vec3 { return Vec3(0, 0, v) + u * out; }, 0, 1, 0, 1, 8, 8).mesh);
     }
     const Mesh mesh = build_mesh(soup);
-    const Model model = make_model(mesh);
-    ASSERT_EQ(model.component_count, 1);
-    Engine engine(mesh, with_proxies(3));
-    engine.run();
-    ASSERT_EQ(engine.proxies().size(), 3u) << stop_reason_name(engine.stop_reason()) << " rms " << engine.rms();
-    EXPECT_TRUE(regions_connected(engine));
+    ASSERT_EQ(make_model(mesh).component_count, 1);
+    const Result r = approximate(mesh, with_proxies(3));
+    ASSERT_EQ(r.proxies.size(), 3u) << stop_reason_name(r.stop_reason) << " rms " << r.rms_error_relative;
+    EXPECT_TRUE(regions_connected(mesh, r));
     // Each fin is a plane of its own.
     const int per_fin = static_cast<int>(mesh.triangles.size()) / 3;
     std::set<int> fin_labels;
     for (int k = 0; k < 3; ++k) {
-        const int label = engine.face_labels()[k * per_fin];
+        const int label = r.face_labels[k * per_fin];
         fin_labels.insert(label);
-        for (int f = k * per_fin; f < (k + 1) * per_fin; ++f) EXPECT_EQ(engine.face_labels()[f], label);
+        for (int f = k * per_fin; f < (k + 1) * per_fin; ++f) EXPECT_EQ(r.face_labels[f], label);
     }
     EXPECT_EQ(fin_labels.size(), 3u);
-    EXPECT_LT(engine.rms(), 1e-9);
+    EXPECT_LT(r.rms_error_relative, 1e-9);
 }

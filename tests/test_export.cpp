@@ -65,13 +65,13 @@ std::vector<int> triangle_regions(const tinygltf::Model& m, const tinygltf::Prim
     return regions;
 }
 
-// Reads the GLB back and checks it against the engine's own report.
-void check_round_trip(const Mesh& mesh, const Engine& engine, const std::string& bytes) {
+// Reads the GLB back and checks it against the run's own report.
+void check_round_trip(const Mesh& mesh, const Result& result, const std::string& bytes) {
     const tinygltf::Model m = parse(bytes);
-    const nlohmann::json report = make_report(mesh, engine, {});
+    const nlohmann::json report = make_report(result);
     const int regions = static_cast<int>(report["proxies"].size());
 
-    ASSERT_EQ(m.nodes.size(), engine.projected_vertices().empty() ? 1u : 2u);
+    ASSERT_EQ(m.nodes.size(), result.projected.empty() ? 1u : 2u);
     EXPECT_EQ(m.nodes[0].name, "input");
     const tinygltf::Primitive& primitive = m.meshes[0].primitives[0];
     const tinygltf::Value& features = primitive.extensions.at("EXT_mesh_features");
@@ -104,33 +104,26 @@ void check_round_trip(const Mesh& mesh, const Engine& engine, const std::string&
     EXPECT_EQ(m.scenes[0].extras.Get("generator").Get<std::string>(), "vqsa");
 }
 
-EngineOptions options_for(int proxies) {
-    EngineOptions o;
-    o.proxies = proxies;
-    return o;
-}
-
-// Runs the engine, exports, keeps the GLB for the validator and checks the round trip.
-std::string export_checked(const Mesh& mesh, const EngineOptions& options, const std::string& name) {
-    Engine engine(mesh, options);
-    engine.run();
-    const std::string bytes = export_glb(mesh, engine);
+// Runs, exports, keeps the GLB for the validator and checks the round trip.
+std::string export_checked(const Mesh& mesh, const Options& options, const std::string& name) {
+    const Result result = test::approximate(mesh, options);
+    const std::string bytes = export_glb(mesh, result);
     keep(name, bytes);
-    check_round_trip(mesh, engine, bytes);
+    check_round_trip(mesh, result, bytes);
     return bytes;
 }
 
 }  // namespace
 
 TEST(Export, FandiskRoundTrip) {
-    export_checked(read_mesh_file(test::shared_mesh("fandisk.off")), options_for(22), "fandisk.glb");
+    export_checked(read_mesh_file(test::shared_mesh("fandisk.off")), test::with_proxies(22), "fandisk.glb");
 }
 
 TEST(Export, LargeMeshUsesThirtyTwoBitIndices) {
     Shape grid = make_grid([](double u, double v) { return Vec3(u, v, 0.3 * std::sin(3 * u) * std::cos(2 * v)); }, 0, 3,
                            0, 2, 330, 220);
     ASSERT_GT(grid.mesh.vertices.size(), 65535u);
-    EngineOptions o = options_for(4);
+    Options o = test::with_proxies(4);
     o.measure = false;
     const tinygltf::Model m = parse(export_checked(grid.mesh, o, "large_grid.glb"));
     EXPECT_EQ(m.accessors[m.meshes[0].primitives[0].indices].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
@@ -144,13 +137,13 @@ TEST(Export, SeveralComponentsAndDroppedFaces) {
     soup.add_polygon(degenerate, 3);
     const Mesh mesh = build_mesh(soup);
     ASSERT_EQ(mesh.input_face_count, static_cast<int>(mesh.triangles.size()) + 1);
-    const tinygltf::Model m = parse(export_checked(mesh, options_for(6), "two_parts.glb"));
+    const tinygltf::Model m = parse(export_checked(mesh, test::with_proxies(6), "two_parts.glb"));
     EXPECT_EQ(m.scenes[0].extras.Get("dropped_faces").Get(0).GetNumberAsInt(), mesh.input_face_count - 1);
 }
 
 TEST(Export, WithoutProjectionOnlyTheInputNode) {
     Shape capsule = make_capsule(0.5, 1, 24, 6);
-    EngineOptions o = options_for(3);
+    Options o = test::with_proxies(3);
     o.project = false;
     export_checked(capsule.mesh, o, "capsule_unprojected.glb");
 }

@@ -1,5 +1,4 @@
 #include "fitting/distance.h"
-#include "lloyd/engine.h"
 #include "post/graph_cut.h"
 #include "io/mesh_io.h"
 #include "post/metrics.h"
@@ -277,21 +276,18 @@ TEST(Metrics, IdenticalMeshesGiveZeroAndAnOffsetGivesTheOffset) {
 
 TEST(PostProcessing, FandiskEndToEnd) {
     const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
-    EngineOptions options;
-    options.proxies = 22;
-    Engine engine(mesh, options);
     int smoothing_events = 0;
-    engine.run([&](const ProgressEvent& e, const Engine&) {
-        smoothing_events += e.phase == Phase::smooth;
+    const Result r = test::approximate(mesh, test::with_proxies(22), [&](const Progress& p) {
+        smoothing_events += p.stage == Stage::smooth;
         return true;
     });
     EXPECT_GT(smoothing_events, 10);
-    ASSERT_TRUE(engine.metrics().has_value());
+    ASSERT_TRUE(r.metrics.has_value());
     // Planar VSA needs 80 proxies for 1.44e-3; the target is 1.0e-3 at 22.
-    EXPECT_LT(engine.metrics()->rms, 1.0e-3);
-    EXPECT_EQ(engine.projected_vertices().size(), mesh.vertices.size());
-    EXPECT_NE(engine.labels(), engine.lloyd_labels());
+    EXPECT_LT(r.metrics->rms, 1.0e-3);
+    EXPECT_EQ(r.projected.size(), mesh.vertices.size());
+    EXPECT_NE(r.labels, r.lloyd_labels);
     int special = 0;
-    for (int i = 0; i < 22; ++i) special += engine.is_special(i);
+    for (const ProxyResult& p : r.proxies) special += p.special_fit;
     EXPECT_GE(special, 10);  // fandisk is mostly planes, cylinders and cones
 }

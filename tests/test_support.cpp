@@ -78,4 +78,17 @@ Quadric moved(const Quadric& f, const Eigen::Matrix3d& R, const Vec3& t) {
 
 std::string shared_mesh(const std::string& name) { return std::string(VQSA_SHARED_MESHES) + "/" + name; }
 
+Options with_proxies(int count, std::uint64_t seed) {
+    Options o;
+    o.lloyd.proxies = count;
+    o.lloyd.seed = seed;
+    return o;
+}
+
+Result approximate(const Mesh& mesh, const Options& options, const ProgressCallback& progress) {
+    Pipeline pipeline(mesh, options);
+    pipeline.run(progress);
+    return pipeline.result();
+}
+
 }  // namespace vqsa::test

@@ -3,6 +3,7 @@
 
 #include "fitting/classify.h"
 #include "fitting/quadric.h"
+#include "pipeline/pipeline.h"
 
 #include <functional>
 #include <random>
@@ -29,5 +30,10 @@ Quadric moved(const Quadric& f, const Eigen::Matrix3d& rotation, const Vec3& tra
 
 // Directory of ../shared/meshes.
 std::string shared_mesh(const std::string& name);
+
+Options with_proxies(int count, std::uint64_t seed = 1);
+
+// A whole run; `progress` (if any) sees every step.
+Result approximate(const Mesh& mesh, const Options& options, const ProgressCallback& progress = {});
 
 }  // namespace vqsa::test

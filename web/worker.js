@@ -39,12 +39,10 @@ function progress(id) {
 async function run(id, options) {
   session.start(options);
   cancelRequested = false;
-  const t0 = performance.now();
-  let lloydEnd = 0, lastPost = 0, lastPhase = '';
+  let lastPost = 0, lastPhase = '';
   for (let more = true; more;) {
     more = session.stepFor(SLICE_MS);
     const p = session.progress();
-    if (!lloydEnd && p.lloydDone) lloydEnd = performance.now();
     const now = performance.now();
     // Operations (insert, split, merge, teleport) always show; Lloyd and smoothing steps are throttled.
     const operation = p.phase !== lastPhase && !['lloyd', 'smooth'].includes(p.phase);
@@ -60,15 +58,12 @@ async function run(id, options) {
       return;
     }
   }
-  const end = performance.now();
-  lloydEnd ||= end;
-  const s = (a, b) => (b - a) / 1000;
   const faceLabels = session.faceLabels(), lloydFaceLabels = session.lloydFaceLabels();
   const projected = session.projected(), vertexErrors = session.vertexErrors(), glb = session.glb();
   post({
     type: 'result', id,
     progress: session.progress(),
-    report: session.report(0, s(t0, lloydEnd), s(lloydEnd, end), s(t0, end)),
+    report: session.report(),
     proxies: JSON.parse(session.proxies()),
     faceLabels, lloydFaceLabels, projected, vertexErrors, glb,
   }, [faceLabels.buffer, lloydFaceLabels.buffer, projected.buffer, vertexErrors.buffer, glb.buffer]);

@@ -34,7 +34,7 @@ test('every corpus file fails with its message or runs to finite results', () =>
     assert.equal(info.facesUsed, want.faces_used, name);
     session.start({ proxies: want.request });
     while (session.stepFor(100)) {}
-    const report = JSON.parse(session.report(0, 0, 0, 0));
+    const report = JSON.parse(session.report());
     assert.equal(report.proxies.length, want.proxies, name);
     assert.ok(finite(report), `${name}: a non-finite number in the report`);
     assert.ok(session.glb().length > 100, name);
@@ -45,12 +45,13 @@ test('every corpus file fails with its message or runs to finite results', () =>
 test('options out of range are refused with a message', () => {
   const session = new vqsa.Session();
   session.loadExample('capsule');
-  assert.throws(() => session.start({ proxies: 0 }), /give a proxy count/);
+  assert.throws(() => session.start({ proxies: 0 }), /proxies must be an integer between 1 and 1000000 or 'auto', not 0/);
   assert.throws(() => session.start({ tolerance: -1 }), /tolerance/);
   assert.throws(() => session.start({ proxies: 1e6 }), /exceeds the number of faces/);
-  assert.throws(() => session.start({ proxies: 1e7 }), /at most 1000000/);
+  assert.throws(() => session.start({ proxies: 1e7 }), /between 1 and 1000000/);
   assert.throws(() => session.start({ proxies: 2.5 }), /integer/);
-  assert.throws(() => session.start({ proxies: '3' }), /must be a number/);
+  assert.throws(() => session.start({ proxies: 'three' }), /proxies must be an integer/);
+  assert.throws(() => session.start({ smooth: 'maybe' }), /smooth must be true or false/);
   assert.throws(() => session.start({ proxies: 3, rings: 0 }), /rings/);
   assert.equal(approximate(session, { proxies: 3 }).length, 3);
   session.delete();

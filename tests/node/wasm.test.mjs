@@ -16,7 +16,7 @@ const vqsa = await loadVqsa();
 function wasmRun(session, options) {
   session.start(options);
   while (session.stepFor(100)) {}
-  return JSON.parse(session.report(0, 0, 0, 0));
+  return JSON.parse(session.report());
 }
 
 function assertSameResult(wasm, native) {
@@ -77,7 +77,7 @@ test('npm run cli:wasm writes what npm run cli writes', () => {
   const args = (o) => [join(meshes, 'csg.off'), '--proxies', '10', '--quiet', '--report', o.report, '--labels', o.labels,
     '--projected', o.projected, '-o', o.glb];
   runNativeCli(args(n));
-  execFileSync(process.execPath, [join(root, 'wasm', 'node', 'cli.mjs'), ...args(w)], { stdio: 'ignore' });
+  execFileSync(process.execPath, [join(root, 'build', 'wasm', 'wasm', 'vqsa-cli.js'), ...args(w)], { stdio: 'ignore' });
   assert.equal(readFileSync(w.labels, 'utf8'), readFileSync(n.labels, 'utf8'));
   assertSameResult(JSON.parse(readFileSync(w.report, 'utf8')), JSON.parse(readFileSync(n.report, 'utf8')));
   const tokens = (f) => readFileSync(f, 'utf8').split(/\s+/).filter(Boolean);

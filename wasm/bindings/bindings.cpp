@@ -1,13 +1,12 @@
-// The engine for JavaScript (embind): typed arrays in and out, no per-element calls,
+// The pipeline for JavaScript (embind): typed arrays in and out, no per-element calls,
 // and every C++ exception turned into a JS Error carrying its message.
-#include "lloyd/engine.h"
+#include "examples.h"
 #include "export/gltf_export.h"
-#include "io/mesh_io.h"
-#include "io/mesh_write.h"
 #include "export/palette.h"
 #include "export/report.h"
-#include "shapes.h"
-#include "examples.h"
+#include "io/mesh_io.h"
+#include "io/mesh_write.h"
+#include "pipeline/pipeline.h"
 
 #include <emscripten/bind.h>
 #include <emscripten/emscripten.h>
@@ -46,42 +45,6 @@ val bytes_to_js(const std::string& bytes) {
         .new_(val(emscripten::typed_memory_view(bytes.size(), reinterpret_cast<const unsigned char*>(bytes.data()))));
 }
 
-EngineOptions parse_options(const val& o) {
-    EngineOptions options;
-    const val keys = val::global("Object").call<val>("keys", o);
-    const int n = keys["length"].as<int>();
-    for (int i = 0; i < n; ++i) {
-        const std::string key = keys[i].as<std::string>();
-        const val v = o[key];
-        if (v.isUndefined() || v.isNull()) continue;
-        auto number = [&] {
-            if (v.typeOf().as<std::string>() != "number") throw std::invalid_argument("option " + key + " must be a number");
-            return v.as<double>();
-        };
-        auto integer = [&] {
-            const double d = number();
-            if (d != std::floor(d) || std::abs(d) > 2147483647.0) throw std::invalid_argument("option " + key + " must be an integer");
-            return static_cast<int>(d);
-        };
-        if (key == "proxies") options.proxies = integer();
-        else if (key == "tolerance") options.tolerance = number();
-        else if (key == "maxIterations") options.max_iterations = integer();
-        else if (key == "seed") {
-            const double d = number();
-            if (d < 0 || d != std::floor(d)) throw std::invalid_argument("option seed must be a non-negative integer");
-            options.seed = static_cast<std::uint64_t>(d);
-        } else if (key == "rings") options.smoothing.rings = integer();
-        else if (key == "lambda") options.smoothing.lambda = number();
-        else if (key == "smooth") options.smooth = v.as<bool>();
-        else if (key == "refit") options.refit = v.as<bool>();
-        else if (key == "project") options.project = v.as<bool>();
-        else if (key == "measure") options.measure = v.as<bool>();
-        else throw std::invalid_argument("unknown option '" + key + "'");
-    }
-    if (options.proxies > 1000000) throw std::invalid_argument("proxies must be at most 1000000");
-    return options;
-}
-
 }  // namespace
 
 // One mesh and, once started, one approximation of it.
@@ -89,65 +52,73 @@ class Session {
 public:
     val load(const val& bytes, const std::string& name) {
         return guarded([&] {
+            const double start = emscripten_get_now();
             const std::vector<std::uint8_t> data = emscripten::convertJSArrayToNumberVector<std::uint8_t>(bytes);
-            return set_mesh(read_mesh(name, data.data(), data.size()));
+            return set_mesh(read_mesh(name, data.data(), data.size()), start);
         });
     }
 
     val load_example(const std::string& name) {
-        return guarded([&] { return set_mesh(example_mesh(name)); });
+        return guarded([&] { return set_mesh(example_mesh(name), emscripten_get_now()); });
     }
 
+    // `options`: the option schema's camelCase names (optionSchema()); numbers may
+    // also come as strings, as HTML attributes give them.
     void start(const val& options) {
         guarded([&] {
             if (!mesh_) throw std::invalid_argument("load a mesh first");
-            engine_.reset();
-            engine_ = std::make_unique<Engine>(*mesh_, parse_options(options));
+            pipeline_.reset();
+            result_.reset();
+            const std::string text = val::global("JSON").call<std::string>("stringify", options);
+            nlohmann::json object;
+            try {
+                object = nlohmann::json::parse(text);
+            } catch (const nlohmann::json::exception&) {
+                throw std::invalid_argument("options must be a plain object");
+            }
+            pipeline_ = std::make_unique<Pipeline>(*mesh_, options_from_json(object));
             return 0;
         });
     }
 
-    // Steps for about `milliseconds` (at least one step); false when done. Also returns
-    // when the Lloyd stage ends, so that callers can time it.
+    // Steps for about `milliseconds` (at least one step); false when done.
     bool step_for(double milliseconds) {
         return guarded([&] {
-            Engine& e = engine();
-            const bool was_lloyd = !e.lloyd_done();
+            Pipeline& p = pipeline();
             const double until = emscripten_get_now() + milliseconds;
-            bool more = e.step();
-            while (more && emscripten_get_now() < until && !e.lloyd_done() == was_lloyd) more = e.step();
+            bool more = p.step();
+            while (more && emscripten_get_now() < until) more = p.step();
             return more;
         });
     }
 
     void cancel() {
         guarded([&] {
-            engine().cancel();
-            engine().step();
+            pipeline().cancel();
+            pipeline().step();
             return 0;
         });
     }
 
     val progress() const {
         return guarded([&] {
-            const Engine& e = engine();
-            val p = val::object();
-            p.set("phase", std::string(phase_name(e.last_phase())));
-            p.set("proxies", static_cast<int>(e.proxies().size()));
-            p.set("iteration", e.iterations());
-            p.set("rms", e.rms());
-            p.set("lloydDone", e.lloyd_done());
-            p.set("done", e.done());
-            p.set("stopReason", std::string(stop_reason_name(e.stop_reason())));
-            return p;
+            const Pipeline& p = pipeline();
+            const Progress now = p.progress();
+            val out = val::object();
+            out.set("stage", std::string(stage_name(now.stage)));
+            out.set("phase", std::string(now.phase));
+            out.set("proxies", now.proxies);
+            out.set("iteration", now.iterations);
+            out.set("rms", now.rms);
+            out.set("fraction", now.fraction);
+            out.set("lloydDone", now.stage != Stage::lloyd);
+            out.set("done", p.done());
+            return out;
         });
     }
 
-    val face_labels() const { return guarded([&] { return copy_to_js("Int32Array", engine().face_labels()); }); }
-    val lloyd_face_labels() const {
-        return guarded([&] { return copy_to_js("Int32Array", engine().lloyd_face_labels()); });
-    }
-    val labels() const { return guarded([&] { return copy_to_js("Int32Array", engine().labels()); }); }
+    // The current region of every kept face (live during the run).
+    val face_labels() const { return guarded([&] { return copy_to_js("Int32Array", pipeline().face_labels()); }); }
 
     val positions() const {
         return guarded([&] {
@@ -165,63 +136,72 @@ public:
     }
     val source_faces() const { return guarded([&] { return copy_to_js("Int32Array", mesh().source_face); }); }
 
+    // The result of a finished run.
+    val lloyd_face_labels() const { return guarded([&] { return copy_to_js("Int32Array", result().lloyd_face_labels); }); }
+    val labels() const { return guarded([&] { return copy_to_js("Int32Array", result().labels); }); }
     val projected() const {
         return guarded([&] {
             std::vector<float> xyz;
-            for (const Vec3& p : engine().projected_vertices()) xyz.insert(xyz.end(), {float(p.x()), float(p.y()), float(p.z())});
+            for (const Vec3& p : result().projected) xyz.insert(xyz.end(), {float(p.x()), float(p.y()), float(p.z())});
             return copy_to_js("Float32Array", xyz);
         });
     }
     val vertex_errors() const {
         return guarded([&] {
-            const auto& m = engine().metrics();
+            const auto& m = result().metrics;
             std::vector<float> d;
             if (m) d.assign(m->vertex_distance.begin(), m->vertex_distance.end());
             return copy_to_js("Float32Array", d);
         });
     }
-
-    std::string report(double load, double lloyd, double postprocess, double total) const {
-        return guarded([&] { return make_report(mesh(), engine(), {load, lloyd, postprocess, total}).dump(); });
-    }
+    std::string report() const { return guarded([&] { return make_report(result()).dump(); }); }
     std::string proxies() const {
         return guarded([&] {
             nlohmann::json list = nlohmann::json::array();
-            for (int i = 0; i < static_cast<int>(engine().proxies().size()); ++i) list.push_back(proxy_report(engine(), i));
+            for (int i = 0; i < static_cast<int>(result().proxies.size()); ++i) list.push_back(proxy_report(result(), i));
             return list.dump();
         });
     }
-    val glb() const { return guarded([&] { return bytes_to_js(export_glb(mesh(), engine())); }); }
+    val glb() const { return guarded([&] { return bytes_to_js(export_glb(mesh(), result())); }); }
     val projected_file(const std::string& name) const {
         return guarded([&] {
-            const std::vector<Vec3> projected = engine().projected_vertices();
-            if (projected.empty()) throw std::invalid_argument("no projected mesh (projection was off or cancelled)");
-            return bytes_to_js(write_mesh(name, projected, mesh().triangles));
+            if (result().projected.empty()) throw std::invalid_argument("no projected mesh (projection was off or cancelled)");
+            return bytes_to_js(write_mesh(name, result().projected, mesh().triangles));
         });
     }
 
 private:
-    val set_mesh(Mesh mesh) {
-        engine_.reset();
+    val set_mesh(Mesh mesh, double started) {
+        pipeline_.reset();
+        result_.reset();
+        load_seconds_ = (emscripten_get_now() - started) / 1000;
         mesh_ = std::make_unique<Mesh>(std::move(mesh));
         val info = val::object();
         info.set("vertices", mesh_->input_vertex_count);
         info.set("faces", mesh_->input_face_count);
         info.set("facesUsed", static_cast<int>(mesh_->triangles.size()));
         info.set("bboxDiagonal", bounding_box(*mesh_).diagonal());
+        info.set("loadSeconds", load_seconds_);
         return info;
     }
     const Mesh& mesh() const {
         if (!mesh_) throw std::invalid_argument("load a mesh first");
         return *mesh_;
     }
-    Engine& engine() const {
-        if (!engine_) throw std::invalid_argument("start an approximation first");
-        return *engine_;
+    Pipeline& pipeline() const {
+        if (!pipeline_) throw std::invalid_argument("start an approximation first");
+        return *pipeline_;
+    }
+    const Result& result() const {
+        if (!pipeline().done()) throw std::invalid_argument("the approximation has not finished");
+        if (!result_) result_ = std::make_unique<Result>(pipeline().result(load_seconds_));
+        return *result_;
     }
 
     std::unique_ptr<Mesh> mesh_;
-    std::unique_ptr<Engine> engine_;
+    std::unique_ptr<Pipeline> pipeline_;
+    mutable std::unique_ptr<Result> result_;
+    double load_seconds_ = 0;  // reading and cleaning the mesh
 };
 
 EMSCRIPTEN_BINDINGS(vqsa) {
@@ -258,6 +238,7 @@ EMSCRIPTEN_BINDINGS(vqsa) {
                              }
                              return legend.dump();
                          }));
+    emscripten::function("optionSchema", emscripten::optional_override([] { return schema_to_json().dump(); }));
     emscripten::function("version", emscripten::optional_override([] { return std::string(VQSA_VERSION); }));
 }
 

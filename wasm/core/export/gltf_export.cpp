@@ -182,11 +182,9 @@ nlohmann::json metadata(BufferWriter& writer, const std::vector<nlohmann::json>&
 
 }  // namespace
 
-std::string export_glb(const Mesh& mesh, const Engine& engine) {
-    const Model& model = engine.model();
-    const Frame& frame = model.frame;
-    const std::vector<int>& labels = engine.face_labels();
-    const int regions = static_cast<int>(engine.proxies().size());
+std::string export_glb(const Mesh& mesh, const Result& result) {
+    const std::vector<int>& labels = result.face_labels;
+    const int regions = static_cast<int>(result.proxies.size());
 
     tinygltf::Model gltf;
     gltf.asset.version = "2.0";
@@ -198,16 +196,15 @@ std::string export_glb(const Mesh& mesh, const Engine& engine) {
     std::vector<Classification> shapes;
     std::vector<Vec3> colors;
     for (int i = 0; i < regions; ++i) {
-        nlohmann::json r = proxy_report(engine, i);
-        shapes.push_back(engine.classification(i));
-        const QuadricType type = engine.proxies()[i].quadric.is_plane() ? QuadricType::plane : shapes.back().type;
-        colors.push_back(region_color(type, i));
+        nlohmann::json r = proxy_report(result, i);
+        shapes.push_back(result.proxies[i].shape);
+        colors.push_back(region_color(result.proxies[i].type, i));
         r["feature_id"] = i;
         r["color"] = {colors.back().x(), colors.back().y(), colors.back().z()};
         region_data.push_back(r);
     }
 
-    const SplitVertices split = split_by_region(model.triangles, labels);
+    const SplitVertices split = split_by_region(mesh.triangles, labels);
     const std::size_t count = split.source.size();
     std::vector<float> color;
     for (int r : split.region)
@@ -248,7 +245,7 @@ std::string export_glb(const Mesh& mesh, const Engine& engine) {
     const nlohmann::json features = {
         {"featureIds", {{{"featureCount", regions}, {"attribute", 0}, {"propertyTable", 0}, {"label", "region"}}}}};
     auto add_mesh = [&](const std::string& name, const std::vector<Vec3>& points, nlohmann::json extras) {
-        const Attributes a = write_surface(writer, points, model.triangles, split);
+        const Attributes a = write_surface(writer, points, mesh.triangles, split);
         tinygltf::Primitive primitive;
         primitive.attributes = {{"POSITION", a.position},
                                 {"NORMAL", a.normal},
@@ -269,17 +266,13 @@ std::string export_glb(const Mesh& mesh, const Engine& engine) {
         gltf.nodes.push_back(node);
     };
 
-    std::vector<Vec3> input;
-    input.reserve(model.points.size());
-    for (const Vec3& p : model.points) input.push_back(frame.to_input(p));
-    add_mesh("input", input, {{"regions", region_data}});
-    const std::vector<Vec3> projected = engine.projected_vertices();
-    if (!projected.empty()) add_mesh("projected", projected, {{"regions_of", "input"}});
+    add_mesh("input", mesh.vertices, {{"regions", region_data}});
+    if (!result.projected.empty()) add_mesh("projected", result.projected, {{"regions_of", "input"}});
 
     gltf.extensions["EXT_structural_metadata"] = to_value(metadata(writer, region_data, shapes));
     gltf.buffers[0].data.resize((gltf.buffers[0].data.size() + 3) / 4 * 4, 0);
 
-    nlohmann::json run = run_report(mesh, engine);
+    nlohmann::json run = run_report(result);
     nlohmann::json legend = nlohmann::json::object();
     for (int t = 0; t <= static_cast<int>(QuadricType::parallel_planes); ++t) {
         const Vec3 c = type_color(static_cast<QuadricType>(t));

@@ -1,7 +1,8 @@
 // The result as one binary glTF (GLB) that carries every region's quadric.
 #pragma once
 
-#include "lloyd/engine.h"
+#include "io/mesh.h"
+#include "pipeline/result.h"
 
 #include <string>
 
@@ -10,11 +11,12 @@ namespace vqsa {
 // Node "input": the input mesh, vertices split along region borders, coloured by quadric
 // type (palette.h), with normals and the region of each vertex in _FEATURE_ID_0
 // (EXT_mesh_features) pointing into an EXT_structural_metadata property table with one
-// row per region. Node "projected": the projected mesh, when the engine projected it.
+// row per region. Node "projected": the projected mesh, when the run projected it.
 // The same per-region data is plain JSON in the input mesh's `extras.regions` (indexed by
 // feature id), and the run in the scene's `extras`. Everything in input coordinates.
 // Triangles keep the input's face order (zero-area faces are left out and listed in
 // `extras.dropped_faces`).
-std::string export_glb(const Mesh& mesh, const Engine& engine);
+// `result` must come from a run on `mesh`.
+std::string export_glb(const Mesh& mesh, const Result& result);
 
 }  // namespace vqsa

@@ -113,4 +113,16 @@ Model make_model(const Mesh& mesh) {
     return model;
 }
 
+std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels) {
+    std::vector<std::pair<int, int>> pairs;
+    for (int f = 0; f < model.face_count(); ++f)
+        for (int e = model.graph.begin(f); e < model.graph.end(f); ++e) {
+            const int a = labels[f], b = labels[model.graph.neighbor[e]];
+            if (a < b) pairs.emplace_back(a, b);
+        }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+}
+
 }  // namespace vqsa

@@ -5,6 +5,7 @@
 #include "io/mesh.h"
 #include "geometry/moments.h"
 
+#include <utility>
 #include <vector>
 
 namespace vqsa {
@@ -35,5 +36,8 @@ struct Model {
 };
 
 Model make_model(const Mesh& mesh);
+
+// Pairs of labels (a < b) of adjacent faces, sorted: the region adjacency of a labelling.
+std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels);
 
 }  // namespace vqsa

@@ -33,27 +33,13 @@ void add_arc(FlowGraph& g, int from, int to, double capacity, double reverse_cap
 
 }  // namespace
 
-std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels) {
-    std::vector<std::pair<int, int>> pairs;
-    for (int f = 0; f < model.face_count(); ++f)
-        for (int e = model.graph.begin(f); e < model.graph.end(f); ++e) {
-            const int a = labels[f], b = labels[model.graph.neighbor[e]];
-            if (a < b) pairs.emplace_back(a, b);
-        }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    return pairs;
-}
-
-BoundarySmoother::BoundarySmoother(const Model& model, const std::vector<Quadric>& proxies, std::vector<int>& labels,
+BoundarySmoother::BoundarySmoother(const Model& model, std::vector<Quadric> proxies, std::vector<int>& labels,
                                    const std::vector<int>& anchors, const SmoothingOptions& options)
-    : model_(model), proxies_(proxies), labels_(labels), options_(options) {
-    if (options.rings < 1) throw std::invalid_argument("rings must be at least 1");
-    if (!(options.lambda >= 0)) throw std::invalid_argument("lambda must be non-negative");
+    : model_(model), labels_(labels), options_(options) {
     double total = 0;
     for (double l : model.graph.edge_length) total += l;
     mean_edge_length_ = model.graph.edge_length.empty() ? 1.0 : total / model.graph.edge_length.size();
-    errors_.reset(model, proxies);
+    errors_.reset(model, std::move(proxies));
     pairs_ = adjacent_regions(model, labels);
     ring_.assign(model.face_count(), 0);
     node_.assign(model.face_count(), -1);

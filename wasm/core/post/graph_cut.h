@@ -1,9 +1,9 @@
 // Boundary smoothing by graph cut (ALGORITHM §5).
 #pragma once
 
-#include "lloyd/flooding.h"
-#include "geometry/model.h"
+#include "fitting/face_errors.h"
 #include "fitting/quadric.h"
+#include "geometry/model.h"
 
 #include <utility>
 #include <vector>
@@ -22,7 +22,7 @@ struct SmoothingOptions {
 class BoundarySmoother {
 public:
     // `anchors`: faces that keep their label (one per region, so no region vanishes).
-    BoundarySmoother(const Model& model, const std::vector<Quadric>& proxies, std::vector<int>& labels,
+    BoundarySmoother(const Model& model, std::vector<Quadric> proxies, std::vector<int>& labels,
                      const std::vector<int>& anchors, const SmoothingOptions& options);
 
     // Smooths the next pair; false once every pair is done (then regions are made
@@ -36,7 +36,6 @@ private:
     void reconnect();
 
     const Model& model_;
-    const std::vector<Quadric>& proxies_;
     std::vector<int>& labels_;
     SmoothingOptions options_;
     FaceErrors errors_;
@@ -47,8 +46,5 @@ private:
     std::vector<int> node_;  // per face: graph node, or -1 (scratch)
     std::vector<char> anchored_;
 };
-
-// Adjacent region pairs (a < b), sorted.
-std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels);
 
 }  // namespace vqsa

@@ -1,0 +1,152 @@
+// Variational quadric shape approximation: Lloyd iteration with progressive proxy
+// insertion, validity splits, merging and teleportation (docs/METHOD.md §3–4).
+#pragma once
+
+#include "fitting/classify.h"
+#include "fitting/fit.h"
+#include "geometry/model.h"
+#include "lloyd/flooding.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace vqsa {
+
+struct LloydOptions {
+    int proxies = 0;            // stop at this many proxies (0: no count target)
+    double tolerance = 0;       // stop when the RMS distance (relative to the longest bounding-box side) is below
+    int max_iterations = 2000;  // Lloyd iterations in all
+    std::uint64_t seed = 1;     // picks the first seed face of each component
+
+    // Lloyd stops when the energy falls by less than this fraction, or after
+    // `stage_iterations` iterations, before the next proxy operation.
+    double convergence = 3e-3;
+    int stage_iterations = 4;
+    // Proxies inserted at once while growing, as a fraction of the current count (at
+    // least one): 0 inserts one at a time, as the paper does.
+    double insertion_batch = 0.25;
+    // Merge-and-reinsert attempts once the proxy count is reached: each is kept only
+    // if it lowers the energy, and the first that does not stops them.
+    int teleports = 4;
+    // A region whose quadric has two parts is split when the smaller part holds at
+    // least this fraction of its area.
+    double split_fraction = 0.05;
+    // Regions with fewer faces get a plane: a quadric through a handful of flat
+    // triangles is underdetermined.
+    int min_quadric_faces = 10;
+    FitOptions fit;
+    ClassifyOptions classify;
+};
+
+// Checks the tuning parameters (the user-facing ones are checked by the option schema,
+// pipeline/options.h). Throws std::invalid_argument naming the offending one.
+void validate(const LloydOptions& options);
+
+// What a Lloyd step did.
+enum class Operation { initialize, iterate, insert, split, merge, teleport };
+const char* operation_name(Operation operation);
+
+enum class StopReason { none, proxies, tolerance, max_iterations, cancelled, exhausted };
+const char* stop_reason_name(StopReason reason);
+
+struct Proxy {
+    Quadric quadric;        // unit frame, unit norm
+    Moments moments{};      // sum over the region
+    double area = 0;        // unit frame
+    double error = 0;       // Σ d(t, P) over the region
+    double fit_error = 0;   // the fit's mean squared distance (unit frame)
+    int faces = 0;
+    int seed = -1;          // the region's face of least error
+    bool fitted = false;    // the quadric is the fit of `moments` (not a seed plane)
+};
+
+// The fit a region of `faces` faces gets: a plane below `min_quadric_faces`, else the
+// better of plane and quadric (fit_region).
+Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options);
+
+// Σ over the model's faces of each region's moments, face count and area; refits the
+// regions flagged in `changed` (all when empty).
+void refit_regions(const Model& model, const std::vector<int>& labels, const LloydOptions& options,
+                   std::vector<Proxy>& proxies, const std::vector<char>& changed = {});
+
+// d(t, P) of every face against its region's proxy into `errors`; each proxy's error and
+// seed (its face of least error). Regions not flagged in `changed` (when given) keep
+// the errors already in `errors`. Returns the energy Σ d(t, P).
+double evaluate_regions(const Model& model, const std::vector<int>& labels, std::vector<Proxy>& proxies,
+                        std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr);
+
+std::vector<Quadric> quadrics_of(const std::vector<Proxy>& proxies);
+std::vector<int> seeds_of(const std::vector<Proxy>& proxies);
+
+// The Lloyd stage on one model. Each step() is one unit of work: a Lloyd iteration or a
+// proxy operation.
+class Lloyd {
+public:
+    Lloyd(const Model& model, const LloydOptions& options);
+
+    // False once the stage has stopped.
+    bool step();
+    // Stops at the next step, leaving a consistent partition.
+    void cancel() { cancel_requested_ = true; }
+
+    bool done() const { return stop_reason_ != StopReason::none; }
+    StopReason stop_reason() const { return stop_reason_; }
+    Operation last_operation() const { return last_operation_; }
+    int iterations() const { return iterations_; }
+    const std::vector<Proxy>& proxies() const { return proxies_; }
+    // Region of every face, in the model's order.
+    const std::vector<int>& labels() const { return labels_; }
+    const std::vector<double>& errors() const { return errors_; }
+    double energy() const { return energy_; }  // Σ d(t, P) over the mesh (unit frame)
+    double rms() const;                         // relative to the longest bounding-box side
+    // How far the stage is, in [0, 1] (by proxy count when there is a target).
+    double fraction() const;
+
+private:
+    struct Snapshot {
+        std::vector<int> labels;
+        std::vector<double> errors;
+        std::vector<Proxy> proxies;
+        double energy = 0;
+    };
+
+    void initialize();
+    void iterate();
+    void decide();
+    void start_operation(Operation operation);
+    void stop(StopReason reason);
+    void evaluate(const std::vector<char>* changed = nullptr);
+    void insert_farthest(int count);  // into the `count` regions of largest error
+    bool split_invalid();
+    // The adjacent pair whose union fit costs least; `gated`: only if merging pays.
+    bool merge_cheapest(bool gated);
+    Quadric plane_through(int face) const;
+    void add_proxy(int seed);  // a plane through the seed face
+    void remove_proxy(int index);
+    Classification classify_proxy(int proxy) const;
+
+    const Model& model_;
+    LloydOptions options_;
+    Flooding flooding_;
+    FaceErrors face_errors_;
+
+    std::vector<Proxy> proxies_;
+    std::vector<int> labels_;
+    std::vector<int> previous_labels_;
+    std::vector<char> changed_;  // per proxy, in the current Lloyd iteration
+    std::vector<double> errors_;
+    double energy_ = 0;
+    double previous_energy_ = 0;
+    int stage_iteration_ = 0;
+    int iterations_ = 0;
+    int teleports_left_ = 0;
+    int splits_left_ = 0;
+    bool iterating_ = false;
+    bool teleport_pending_ = false;
+    Snapshot snapshot_;
+    Operation last_operation_ = Operation::initialize;
+    StopReason stop_reason_ = StopReason::none;
+    bool cancel_requested_ = false;
+};
+
+}  // namespace vqsa

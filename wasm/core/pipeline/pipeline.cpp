@@ -1,0 +1,323 @@
+#include "pipeline/pipeline.h"
+
+#include "fitting/special_fit.h"
+#include "lloyd/lloyd.h"
+#include "post/graph_cut.h"
+#include "post/project.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace vqsa {
+
+const char* stage_name(Stage stage) {
+    switch (stage) {
+        case Stage::lloyd: return "lloyd";
+        case Stage::smooth: return "smooth";
+        case Stage::refit: return "refit";
+        case Stage::project: return "project";
+        case Stage::measure: return "measure";
+        case Stage::done: return "done";
+    }
+    return "unknown";
+}
+
+// One stage of the run: step() does a bounded piece of it, false once it is finished.
+class PipelineStage {
+public:
+    virtual ~PipelineStage() = default;
+    virtual Stage id() const = 0;
+    virtual bool step() = 0;
+    virtual double fraction() const = 0;
+};
+
+namespace {
+
+using State = Pipeline::State;
+
+class LloydStage : public PipelineStage {
+public:
+    LloydStage(const Model& model, const LloydOptions& options, State& state)
+        : model_(model), lloyd_(model, options), state_(state) {}
+    Stage id() const override { return Stage::lloyd; }
+    double fraction() const override { return lloyd_.fraction(); }
+    const std::vector<int>& labels() const { return lloyd_.labels(); }
+    const Lloyd& lloyd() const { return lloyd_; }
+    void cancel() { lloyd_.cancel(); }
+
+    bool step() override {
+        const bool more = lloyd_.step();
+        state_.phase = operation_name(lloyd_.last_operation());
+        state_.iterations = lloyd_.iterations();
+        if (more) return true;
+        state_.stop_reason = lloyd_.stop_reason();
+        state_.labels = state_.lloyd_labels = lloyd_.labels();
+        state_.proxies = lloyd_.proxies();
+        state_.energy = lloyd_.energy();
+        return false;
+    }
+
+private:
+    const Model& model_;
+    Lloyd lloyd_;
+    State& state_;
+};
+
+// Graph-cut smoothing, one boundary per step; then every region is refitted.
+class SmoothStage : public PipelineStage {
+public:
+    SmoothStage(const Model& model, const Options& options, State& state)
+        : model_(model), options_(options), state_(state) {}
+    Stage id() const override { return Stage::smooth; }
+    double fraction() const override {
+        return smoother_ && smoother_->pair_count() > 0 ? double(smoother_->pairs_done()) / smoother_->pair_count() : 0;
+    }
+
+    bool step() override {
+        state_.phase = "smooth";
+        if (!smoother_)
+            smoother_ = std::make_unique<BoundarySmoother>(model_, quadrics_of(state_.proxies), state_.labels,
+                                                           seeds_of(state_.proxies), options_.smoothing);
+        if (smoother_->step()) return true;
+        refit_regions(model_, state_.labels, options_.lloyd, state_.proxies);
+        FaceErrors evaluator;
+        std::vector<double> errors;
+        state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
+        return false;
+    }
+
+private:
+    const Model& model_;
+    const Options& options_;
+    State& state_;
+    std::unique_ptr<BoundarySmoother> smoother_;
+};
+
+// The special types (plane, sphere, circular cylinder, cone) by orthogonal distances,
+// one region per step.
+class RefitStage : public PipelineStage {
+public:
+    RefitStage(const Model& model, const Options& options, State& state)
+        : model_(model), options_(options), state_(state) {}
+    Stage id() const override { return Stage::refit; }
+    double fraction() const override {
+        return state_.proxies.empty() ? 1 : double(next_) / state_.proxies.size();
+    }
+
+    bool step() override {
+        state_.phase = "refit";
+        const int count = static_cast<int>(state_.proxies.size());
+        if (samples_.empty()) {
+            state_.shapes.assign(count, std::nullopt);
+            if (!options_.refit) return false;
+            samples_.resize(count);
+            for (int f = 0; f < model_.face_count(); ++f) {
+                Samples& s = samples_[state_.labels[f]];
+                const double w = 0.25 * model_.areas[f];
+                for (int v : model_.triangles[f]) s.add(model_.points[v], w);
+                s.add(model_.barycentres[f], w);
+            }
+        }
+        if (next_ < count) {
+            Proxy& p = state_.proxies[next_];
+            if (p.faces >= 2) {
+                const std::optional<SpecialFit> fit =
+                    best_special_fit(samples_[next_], p.quadric, std::sqrt(p.error / p.area), options_.special);
+                if (fit) {
+                    state_.shapes[next_] = fit->shape;
+                    p.quadric = fit->quadric;
+                }
+            }
+            samples_[next_] = Samples();
+            ++next_;
+            return true;
+        }
+        FaceErrors evaluator;
+        std::vector<double> errors;
+        state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
+        return false;
+    }
+
+private:
+    const Model& model_;
+    const Options& options_;
+    State& state_;
+    std::vector<Samples> samples_;  // per region
+    int next_ = 0;
+};
+
+class ProjectStage : public PipelineStage {
+public:
+    ProjectStage(const Model& model, const Options& options, State& state)
+        : model_(model), options_(options), state_(state) {}
+    Stage id() const override { return Stage::project; }
+    double fraction() const override { return 0; }
+    bool step() override {
+        state_.phase = "project";
+        std::vector<ProjectionTarget> targets;
+        for (std::size_t i = 0; i < state_.proxies.size(); ++i)
+            targets.push_back({state_.proxies[i].quadric, state_.shapes[i]});
+        state_.projected = project_vertices(model_, state_.labels, targets, options_.max_projection_distance);
+        return false;
+    }
+
+private:
+    const Model& model_;
+    const Options& options_;
+    State& state_;
+};
+
+class MeasureStage : public PipelineStage {
+public:
+    MeasureStage(const Model& model, const Options& options, State& state)
+        : model_(model), options_(options), state_(state) {}
+    Stage id() const override { return Stage::measure; }
+    double fraction() const override { return 0; }
+    bool step() override {
+        state_.phase = "measure";
+        state_.metrics = measure(model_.points, state_.projected, model_.triangles, state_.labels,
+                                 static_cast<int>(state_.proxies.size()), options_.metrics);
+        return false;
+    }
+
+private:
+    const Model& model_;
+    const Options& options_;
+    State& state_;
+};
+
+double elapsed(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
+Pipeline::Pipeline(const Mesh& mesh, const Options& options) : source_face_(mesh.source_face), options_(options) {
+    validate(options_);
+    if (mesh.triangles.empty()) throw std::invalid_argument("the mesh has no faces");
+    model_ = make_model(mesh);
+    input_ = {mesh.input_vertex_count,      mesh.input_face_count,    static_cast<int>(mesh.triangles.size()),
+              model_.component_count,       bounding_box(mesh).diagonal(), model_.frame.scale};
+    stages_.push_back(std::make_unique<LloydStage>(model_, options_.lloyd, state_));
+    if (options_.smooth) stages_.push_back(std::make_unique<SmoothStage>(model_, options_, state_));
+    stages_.push_back(std::make_unique<RefitStage>(model_, options_, state_));
+    if (options_.project) {
+        stages_.push_back(std::make_unique<ProjectStage>(model_, options_, state_));
+        if (options_.measure) stages_.push_back(std::make_unique<MeasureStage>(model_, options_, state_));
+    }
+}
+
+Pipeline::~Pipeline() = default;
+
+Stage Pipeline::stage() const { return current_ < stages_.size() ? stages_[current_]->id() : Stage::done; }
+
+const std::vector<int>& Pipeline::face_labels() const {
+    return current_ == 0 && !stages_.empty() ? static_cast<const LloydStage&>(*stages_[0]).labels() : state_.labels;
+}
+
+bool Pipeline::step() {
+    if (done()) return false;
+    const auto start = std::chrono::steady_clock::now();
+    double& seconds = seconds_[current_ == 0 ? 0 : 1];
+    if (cancel_requested_) {
+        if (current_ == 0) {
+            // The Lloyd stage ends with a consistent partition; nothing runs after it.
+            auto& lloyd = static_cast<LloydStage&>(*stages_[0]);
+            lloyd.cancel();
+            lloyd.step();
+        }
+        state_.stop_reason = StopReason::cancelled;
+        state_.phase = "done";
+        current_ = stages_.size();
+        seconds += elapsed(start);
+        return false;
+    }
+    const bool more = stages_[current_]->step();
+    if (!more) {
+        ++current_;
+        if (current_ == 1 && state_.stop_reason == StopReason::cancelled) current_ = stages_.size();
+        if (done()) state_.phase = "done";
+    }
+    seconds += elapsed(start);
+    return !done();
+}
+
+void Pipeline::run(const ProgressCallback& progress) {
+    while (!done()) {
+        step();
+        if (progress && !progress(this->progress())) {
+            cancel();
+            step();
+        }
+    }
+}
+
+Progress Pipeline::progress() const {
+    Progress p;
+    p.stage = stage();
+    p.phase = state_.phase;
+    p.iterations = state_.iterations;
+    if (current_ == 0 && !stages_.empty()) {
+        const Lloyd& lloyd = static_cast<const LloydStage&>(*stages_[0]).lloyd();
+        p.proxies = static_cast<int>(lloyd.proxies().size());
+        p.rms = lloyd.rms();
+    } else {
+        p.proxies = static_cast<int>(state_.proxies.size());
+        p.rms = model_.total_area > 0 ? std::sqrt(std::max(0.0, state_.energy) / model_.total_area) : 0;
+    }
+    p.fraction = done() ? 1 : stages_[current_]->fraction();
+    return p;
+}
+
+Result Pipeline::result(double load_seconds) const {
+    Result r;
+    r.input = input_;
+    r.options = options_;
+    r.stop_reason = state_.stop_reason;
+    r.iterations = state_.iterations;
+    const Progress now = progress();
+    r.rms_error_relative = now.rms;
+    r.rms_error = now.rms * model_.frame.scale;
+    r.timing = {load_seconds, seconds_[0], seconds_[1], load_seconds + seconds_[0] + seconds_[1]};
+
+    r.face_labels = face_labels();
+    r.lloyd_face_labels = state_.lloyd_labels.empty() ? r.face_labels : state_.lloyd_labels;
+    auto input_order = [&](const std::vector<int>& model_order) {
+        std::vector<int> out(input_.faces, -1);
+        for (std::size_t f = 0; f < model_order.size(); ++f) out[source_face_[f]] = model_order[f];
+        return out;
+    };
+    r.labels = input_order(r.face_labels);
+    r.lloyd_labels = input_order(r.lloyd_face_labels);
+
+    const Frame& frame = model_.frame;
+    const std::vector<Proxy>& proxies =
+        current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd().proxies() : state_.proxies;
+    for (int i = 0; i < static_cast<int>(proxies.size()); ++i) {
+        const Proxy& p = proxies[i];
+        ProxyResult out;
+        out.id = i;
+        const bool special = i < static_cast<int>(state_.shapes.size()) && state_.shapes[i].has_value();
+        Classification unit;
+        if (special) {
+            unit = *state_.shapes[i];
+        } else {
+            const RegionFrame region = region_frame(p.moments);
+            unit = classify(p.quadric, region.center, region.radius, options_.lloyd.classify);
+        }
+        out.shape = change_frame(unit, frame.scale, frame.translation);
+        out.type = p.quadric.is_plane() ? QuadricType::plane : out.shape.type;
+        out.special_fit = special;
+        out.quadric = normalized(change_frame(p.quadric, frame.scale, frame.translation));
+        out.faces = p.faces;
+        out.area = p.area * frame.scale * frame.scale;
+        out.rms_error = p.area > 0 ? std::sqrt(p.error / p.area) * frame.scale : 0.0;
+        r.proxies.push_back(out);
+    }
+    for (const Vec3& p : state_.projected) r.projected.push_back(frame.to_input(p));
+    r.metrics = state_.metrics;
+    return r;
+}
+
+}  // namespace vqsa

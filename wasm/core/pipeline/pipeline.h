@@ -1,0 +1,82 @@
+// A run from a mesh to its result, as a list of stages stepped one bounded piece at a
+// time: Lloyd → smooth → refit → project → measure (docs/ARCHITECTURE.md).
+#pragma once
+
+#include "geometry/model.h"
+#include "io/mesh.h"
+#include "pipeline/options.h"
+#include "pipeline/result.h"
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace vqsa {
+
+enum class Stage { lloyd, smooth, refit, project, measure, done };
+const char* stage_name(Stage stage);
+
+struct Progress {
+    Stage stage = Stage::lloyd;
+    // What the last step did: the Lloyd operation (lloyd, insert, split, merge, teleport)
+    // during the Lloyd stage, else the stage's name.
+    const char* phase = "initialize";
+    int proxies = 0;
+    int iterations = 0;    // Lloyd iterations so far
+    double rms = 0;        // RMS distance over the longest bounding-box side
+    double fraction = 0;   // of the current stage, in [0, 1]
+};
+
+// Return false to cancel.
+using ProgressCallback = std::function<bool(const Progress&)>;
+
+class PipelineStage;
+
+class Pipeline {
+public:
+    // Checks the options (std::invalid_argument) and builds the model.
+    Pipeline(const Mesh& mesh, const Options& options);
+    ~Pipeline();
+
+    // One bounded piece of work; false when the run is over.
+    bool step();
+    // Steps to the end, reporting after every step.
+    void run(const ProgressCallback& progress = {});
+    // Ends the run at the next step, leaving a consistent partition.
+    void cancel() { cancel_requested_ = true; }
+
+    bool done() const { return stage() == Stage::done; }
+    Stage stage() const;
+    Progress progress() const;
+    const Model& model() const { return model_; }
+    // The current region of every kept face (live during the run).
+    const std::vector<int>& face_labels() const;
+    // The run so far (complete once done()). `load_seconds` goes into its timing.
+    Result result(double load_seconds = 0) const;
+
+    // What the stages hand on to each other.
+    struct State {
+        std::vector<int> labels, lloyd_labels;
+        std::vector<Proxy> proxies;
+        std::vector<std::optional<Classification>> shapes;  // special fits, unit frame
+        double energy = 0;
+        StopReason stop_reason = StopReason::none;
+        int iterations = 0;
+        const char* phase = "initialize";
+        std::vector<Vec3> projected;  // unit frame
+        std::optional<Metrics> metrics;
+    };
+
+private:
+    InputInfo input_;
+    std::vector<int> source_face_;  // Mesh::source_face
+    Options options_;
+    Model model_;
+    State state_;
+    std::vector<std::unique_ptr<PipelineStage>> stages_;
+    std::size_t current_ = 0;
+    double seconds_[2] = {0, 0};  // Lloyd, post-processing
+    bool cancel_requested_ = false;
+};
+
+}  // namespace vqsa
