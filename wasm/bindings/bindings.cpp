@@ -227,7 +227,7 @@ EMSCRIPTEN_BINDINGS(vqsa) {
         .function("projectedFile", &Session::projected_file);
     emscripten::function("exampleNames", emscripten::optional_override([] {
                              std::string names;
-                             for (const char* n : example_names()) names += std::string(names.empty() ? "" : ",") + n;
+                             for (const std::string& n : example_names()) names += std::string(names.empty() ? "" : ",") + n;
                              return names;
                          }));
     emscripten::function("legend", emscripten::optional_override([] {

@@ -1,5 +1,6 @@
 #include "examples.h"
 
+#include "cad_parts.h"
 #include "shapes.h"
 
 #include <cmath>
@@ -41,12 +42,21 @@ Mesh make(const std::string& name, double s) {
     if (name == "capsule") return make_capsule(0.5, 1.5, steps(96, s), steps(24, s)).mesh;
     if (name == "closed_cylinder") return make_closed_cylinder(0.5, 1.5, steps(96, s), steps(16, s)).mesh;
     if (name == "axle") return axle(s);
+    for (const std::string& part : part_names()) {
+        PartOptions options;
+        options.detail = s;
+        if (name == part) return make_part(name, options).mesh;
+    }
     throw std::invalid_argument("unknown example '" + name + "'");
 }
 
 }  // namespace
 
-std::vector<const char*> example_names() { return {"turned_part", "capsule", "closed_cylinder", "axle"}; }
+std::vector<std::string> example_names() {
+    std::vector<std::string> names{"turned_part", "capsule", "closed_cylinder", "axle"};
+    for (const std::string& part : part_names()) names.push_back(part);
+    return names;
+}
 
 Mesh example_mesh(const std::string& spec) {
     const std::size_t colon = spec.find(':');

@@ -8,7 +8,7 @@
 
 namespace vqsa {
 
-std::vector<const char*> example_names();
+std::vector<std::string> example_names();
 
 // `name`, or `name:FACES` for about FACES triangles (the resolution scales; at most
 // 20 million). Throws std::invalid_argument for an unknown name or a bad size.

@@ -1,0 +1,591 @@
+#include "cad_parts.h"
+
+#include "geometry/rng.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <stdexcept>
+
+namespace vqsa {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+class Random {
+public:
+    explicit Random(std::uint64_t seed) : rng_(seed) {}
+    double uniform() { return static_cast<double>(rng_.next() >> 11) * 0x1.0p-53; }
+    double normal() {  // Box–Muller
+        const double u1 = std::max(uniform(), 1e-300), u2 = uniform();
+        return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
+    }
+
+private:
+    SplitMix64 rng_;
+};
+
+using Labeller = std::function<int(int)>;  // band segment → true face
+
+// Collects polygons labelled by true face; vertices are welded by build_mesh (exactly
+// equal positions), which is why shared boundaries are built once and passed around.
+class PartBuilder {
+public:
+    explicit PartBuilder(const PartOptions& options) : options_(options), random_(options.seed * 7919 + 17) {}
+
+    int surface(const TrueSurface& s) {
+        surfaces_.push_back(s);
+        return static_cast<int>(surfaces_.size()) - 1;
+    }
+    int count(int base) const { return std::max(1, static_cast<int>(std::lround(base * options_.detail))); }
+
+    // n + 1 parameters from 0 to 1: uniform, or with a density varying about 6× and jitter.
+    std::vector<double> spacing(int n) {
+        std::vector<double> t(n + 1);
+        const double phase = 2 * kPi * random_.uniform();
+        for (int i = 0; i <= n; ++i) {
+            const double u = double(i) / n;
+            t[i] = options_.irregular ? u + 0.7 * (std::sin(2 * kPi * u + phase) - std::sin(phase)) / (2 * kPi) : u;
+        }
+        t[0] = 0, t[n] = 1;
+        if (options_.irregular) {
+            const std::vector<double> base = t;
+            for (int i = 1; i < n; ++i)
+                t[i] += (random_.uniform() - 0.5) * 0.4 * std::min(base[i] - base[i - 1], base[i + 1] - base[i]);
+        }
+        return t;
+    }
+
+    // Points a → b (both included), `n` segments.
+    std::vector<Vec3> segment(const Vec3& a, const Vec3& b, int n) {
+        std::vector<Vec3> out;
+        const std::vector<double> t = spacing(n);
+        for (int i = 0; i <= n; ++i) out.push_back(i == 0 ? a : i == n ? b : Vec3(a + t[i] * (b - a)));
+        return out;
+    }
+
+    // The band between polylines a and b of equal length (loops when `closed`): rows of
+    // points on the straight lines a_j → b_j, so planes, cylinders and cones whose lines
+    // these are keep every vertex on the surface. Quad (j, j+1) belongs to label_of(j).
+    void band(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int rows, bool closed, const Labeller& label_of) {
+        if (a.size() != b.size()) throw std::logic_error("band: polylines of different lengths");
+        const int m = static_cast<int>(a.size());
+        std::vector<double> s(rows + 1);
+        for (int r = 0; r <= rows; ++r) {
+            const double u = double(r) / rows;
+            // Graded rows when irregular: spacing grows geometrically across the band.
+            s[r] = options_.irregular && rows > 1 ? (std::pow(1.5, r) - 1) / (std::pow(1.5, rows) - 1) : u;
+        }
+        std::vector<std::vector<int>> index(rows + 1, std::vector<int>(m));
+        for (int r = 0; r <= rows; ++r)
+            for (int j = 0; j < m; ++j) {
+                Vec3 p;
+                if (r == 0) p = a[j];
+                else if (r == rows) p = b[j];
+                else {
+                    double t = s[r];
+                    if (options_.irregular) t += (random_.uniform() - 0.5) * 0.5 * std::min(s[r] - s[r - 1], s[r + 1] - s[r]);
+                    p = a[j] + t * (b[j] - a[j]);
+                }
+                index[r][j] = vertex(p);
+            }
+        for (int r = 0; r < rows; ++r)
+            for (int j = 0; j + (closed ? 0 : 1) < m; ++j) {
+                const int k = (j + 1) % m;
+                quad(index[r][j], index[r][k], index[r + 1][k], index[r + 1][j], label_of(j));
+            }
+    }
+    void band(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int rows, bool closed, int label) {
+        band(a, b, rows, closed, [label](int) { return label; });
+    }
+
+    // A planar loop star-shaped from `center`, filled with shrinking copies and a fan.
+    void fill(const std::vector<Vec3>& loop, const Vec3& center, int rows, int label) {
+        std::vector<Vec3> inner;
+        for (const Vec3& p : loop) inner.push_back(center + (p - center) / (rows + 1.0));
+        band(loop, inner, rows, true, label);
+        fan(inner, center, label);
+    }
+
+    // Triangles from every segment of the loop to `apex`.
+    void fan(const std::vector<Vec3>& loop, const Vec3& apex, int label) {
+        const int c = vertex(apex), m = static_cast<int>(loop.size());
+        std::vector<int> ring;
+        for (const Vec3& p : loop) ring.push_back(vertex(p));
+        for (int j = 0; j < m; ++j) triangle(ring[j], ring[(j + 1) % m], c, label);
+    }
+
+    Part finish(const std::string& name);
+
+    Random& random() { return random_; }
+
+private:
+    int vertex(const Vec3& p) {
+        soup_.positions.push_back(p);
+        return static_cast<int>(soup_.positions.size()) - 1;
+    }
+    void triangle(int a, int b, int c, int label) {
+        const int t[3] = {a, b, c};
+        soup_.add_polygon(t, 3);
+        labels_.push_back(label);
+    }
+    // a, b on one row, d, c the points above them: split along the shorter diagonal.
+    void quad(int a, int b, int c, int d, int label) {
+        const auto& p = soup_.positions;
+        if ((p[a] - p[c]).squaredNorm() <= (p[b] - p[d]).squaredNorm()) {
+            triangle(a, b, c, label);
+            triangle(a, c, d, label);
+        } else {
+            triangle(a, b, d, label);
+            triangle(b, c, d, label);
+        }
+    }
+
+    PartOptions options_;
+    Random random_;
+    PolygonSoup soup_;
+    std::vector<int> labels_;
+    std::vector<TrueSurface> surfaces_;
+};
+
+// Flips faces so that neighbours traverse shared edges in opposite directions, then the
+// whole mesh so that the enclosed volume is positive (normals point out).
+void orient(Mesh& mesh) {
+    const int n = static_cast<int>(mesh.face_count());
+    std::map<std::pair<int, int>, std::vector<int>> edge_faces;  // undirected edge → faces
+    for (int f = 0; f < n; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+            edge_faces[{std::min(a, b), std::max(a, b)}].push_back(f);
+        }
+    auto has_directed = [&](int f, int a, int b) {
+        for (int k = 0; k < 3; ++k)
+            if (mesh.triangles[f][k] == a && mesh.triangles[f][(k + 1) % 3] == b) return true;
+        return false;
+    };
+    std::vector<char> done(n, 0);
+    for (int start = 0; start < n; ++start) {
+        if (done[start]) continue;
+        done[start] = 1;
+        std::vector<int> stack{start};
+        while (!stack.empty()) {
+            const int f = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; ++k) {
+                const int a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+                for (int g : edge_faces[{std::min(a, b), std::max(a, b)}]) {
+                    if (done[g]) continue;
+                    if (has_directed(g, a, b)) std::swap(mesh.triangles[g][1], mesh.triangles[g][2]);
+                    done[g] = 1;
+                    stack.push_back(g);
+                }
+            }
+        }
+    }
+    double volume = 0;
+    for (const Triangle& t : mesh.triangles)
+        volume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+    if (volume < 0)
+        for (Triangle& t : mesh.triangles) std::swap(t[1], t[2]);
+}
+
+Eigen::Matrix3d random_rotation(Random& r) {
+    Eigen::Quaterniond q(r.normal(), r.normal(), r.normal(), r.normal());
+    q.normalize();
+    return q.toRotationMatrix();
+}
+
+Part PartBuilder::finish(const std::string& name) {
+    Part part;
+    part.name = name;
+    part.mesh = build_mesh(soup_);
+    for (int source : part.mesh.source_face) part.face.push_back(labels_[source]);
+    part.surfaces = surfaces_;
+    orient(part.mesh);
+
+    if (options_.noise > 0) {
+        std::vector<Vec3> normal(part.mesh.vertices.size(), Vec3::Zero());
+        for (const Triangle& t : part.mesh.triangles) {
+            const Vec3& a = part.mesh.vertices[t[0]];
+            const Vec3 n = (part.mesh.vertices[t[1]] - a).cross(part.mesh.vertices[t[2]] - a);
+            for (int v : t) normal[v] += n;
+        }
+        const double sigma = options_.noise * bounding_box(part.mesh).diagonal();
+        for (std::size_t v = 0; v < normal.size(); ++v)
+            if (normal[v].norm() > 0) part.mesh.vertices[v] += sigma * random_.normal() * normal[v].normalized();
+    }
+    if (options_.random_pose) {
+        const Eigen::Matrix3d R = random_rotation(random_);
+        const Vec3 t(random_.normal(), random_.normal(), random_.normal());
+        for (Vec3& p : part.mesh.vertices) p = R * p + t;
+        for (TrueSurface& s : part.surfaces) s.point = R * s.point + t, s.axis = R * s.axis;
+    }
+    return part;
+}
+
+TrueSurface plane(const Vec3& point, const Vec3& normal) { return {QuadricType::plane, point, normal.normalized()}; }
+TrueSurface cylinder(const Vec3& point, const Vec3& axis, double radius) {
+    return {QuadricType::cylinder, point, axis.normalized(), radius};
+}
+
+// Rays from `center` through each point of `loop` onto the circle of radius r about it
+// (in the plane z = center.z).
+std::vector<Vec3> onto_circle(const std::vector<Vec3>& loop, const Vec3& center, double r) {
+    std::vector<Vec3> out;
+    for (const Vec3& p : loop) {
+        const Vec3 d = p - center;
+        out.push_back(center + r / d.norm() * d);
+    }
+    return out;
+}
+
+std::vector<Vec3> at_height(const std::vector<Vec3>& points, double z) {
+    std::vector<Vec3> out = points;
+    for (Vec3& p : out) p.z() = z;
+    return out;
+}
+
+// Appends `piece` without its last point (the next piece starts there).
+void append_open(std::vector<Vec3>& loop, const std::vector<Vec3>& piece) {
+    loop.insert(loop.end(), piece.begin(), piece.end() - 1);
+}
+
+// A box with a cylindrical boss on top and a through hole: 9 faces.
+Part box_boss_hole(const PartOptions& o) {
+    PartBuilder b(o);
+    const double W = 2, D = 1, H = 0.5, hole_r = 0.2, boss_r = 0.3, boss_h = 0.4;
+    const Vec3 hole(0.5, 0.5, 0), boss(1.5, 0.5, 0);
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, H}, Vec3::UnitZ()));
+    const int front = b.surface(plane({0, 0, 0}, -Vec3::UnitY())), right = b.surface(plane({W, 0, 0}, Vec3::UnitX()));
+    const int back = b.surface(plane({0, D, 0}, Vec3::UnitY())), left = b.surface(plane({0, 0, 0}, -Vec3::UnitX()));
+    const int boss_side = b.surface(cylinder(boss, Vec3::UnitZ(), boss_r));
+    const int boss_top = b.surface(plane({0, 0, H + boss_h}, Vec3::UnitZ()));
+    const int hole_side = b.surface(cylinder(hole, Vec3::UnitZ(), hole_r));
+
+    const int n = b.count(16), rows = b.count(7), z_rows = b.count(5);
+    // Edges at z = 0 of the two unit squares the top and bottom are cut into.
+    const Vec3 c00(0, 0, 0), c10(1, 0, 0), c20(W, 0, 0), c21(W, D, 0), c11(1, D, 0), c01(0, D, 0);
+    const auto front_left = b.segment(c00, c10, n), front_right = b.segment(c10, c20, n);
+    const auto right_edge = b.segment(c20, c21, n), back_right = b.segment(c21, c11, n);
+    const auto back_left = b.segment(c11, c01, n), left_edge = b.segment(c01, c00, n);
+    const auto middle = b.segment(c10, c11, n);
+    std::vector<Vec3> left_square, right_square, outline;
+    std::vector<int> outline_face;
+    append_open(left_square, front_left), append_open(left_square, middle);
+    append_open(left_square, back_left), append_open(left_square, left_edge);
+    std::vector<Vec3> middle_down(middle.rbegin(), middle.rend());
+    append_open(right_square, front_right), append_open(right_square, right_edge);
+    append_open(right_square, back_right), append_open(right_square, middle_down);
+    for (const auto& [edge, face] : {std::pair{&front_left, front}, {&front_right, front}, {&right_edge, right},
+                                     {&back_right, back}, {&back_left, back}, {&left_edge, left}}) {
+        append_open(outline, *edge);
+        outline_face.insert(outline_face.end(), edge->size() - 1, face);
+    }
+
+    const auto hole_bottom = onto_circle(left_square, hole, hole_r);
+    const auto hole_top = at_height(hole_bottom, H);
+    const auto boss_foot = at_height(onto_circle(right_square, boss, boss_r), H);
+    const auto boss_rim = at_height(boss_foot, H + boss_h);
+    b.band(left_square, hole_bottom, rows, true, bottom);
+    b.fill(right_square, boss, rows, bottom);
+    b.band(at_height(left_square, H), hole_top, rows, true, top);
+    b.band(at_height(right_square, H), boss_foot, rows, true, top);
+    b.band(outline, at_height(outline, H), z_rows, true, [&](int j) { return outline_face[j]; });
+    b.band(hole_bottom, hole_top, z_rows, true, hole_side);
+    b.band(boss_foot, boss_rim, z_rows, true, boss_side);
+    b.fill(boss_rim, Vec3(boss.x(), boss.y(), H + boss_h), rows, boss_top);
+    return b.finish("box_boss_hole");
+}
+
+// An L-bracket whose inner edge is a fillet tangent to both legs: 9 faces.
+Part l_bracket(const PartOptions& o) {
+    PartBuilder b(o);
+    const double L = 2, Hh = 1.6, t = 0.3, r = 0.35, width = 1.2;
+    auto xz = [](double x, double z) { return Vec3(x, 0, z); };
+    const Vec3 fillet_axis_point = xz(t + r, t + r);
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), end = b.surface(plane({L, 0, 0}, Vec3::UnitX()));
+    const int leg_top = b.surface(plane({0, 0, t}, Vec3::UnitZ()));
+    const int fillet = b.surface(cylinder(fillet_axis_point, Vec3::UnitY(), r));
+    const int inner = b.surface(plane({t, 0, 0}, Vec3::UnitX())), top = b.surface(plane({0, 0, Hh}, Vec3::UnitZ()));
+    const int outer = b.surface(plane({0, 0, 0}, -Vec3::UnitX()));
+    const int near_side = b.surface(plane({0, 0, 0}, -Vec3::UnitY()));
+    const int far_side = b.surface(plane({0, width, 0}, Vec3::UnitY()));
+
+    std::vector<Vec3> profile;
+    std::vector<int> profile_face;
+    auto add = [&](const std::vector<Vec3>& piece, int face) {
+        append_open(profile, piece);
+        profile_face.insert(profile_face.end(), piece.size() - 1, face);
+    };
+    const int n = b.count(14);
+    add(b.segment(xz(0, 0), xz(L, 0), 2 * n), bottom);
+    add(b.segment(xz(L, 0), xz(L, t), b.count(3)), end);
+    add(b.segment(xz(L, t), xz(t + r, t), n), leg_top);
+    std::vector<Vec3> arc;
+    const std::vector<double> s = b.spacing(b.count(10));
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double a = -kPi / 2 - s[i] * kPi / 2;  // from straight below the axis to its left
+        arc.push_back(i == 0 ? xz(t + r, t) : i + 1 == s.size() ? xz(t, t + r) : xz(t + r + r * std::cos(a), t + r + r * std::sin(a)));
+    }
+    add(arc, fillet);
+    add(b.segment(xz(t, t + r), xz(t, Hh), n), inner);
+    add(b.segment(xz(t, Hh), xz(0, Hh), b.count(3)), top);
+    add(b.segment(xz(0, Hh), xz(0, 0), 2 * n), outer);
+
+    std::vector<Vec3> far = profile;
+    for (Vec3& p : far) p.y() = width;
+    b.band(profile, far, b.count(10), true, [&](int j) { return profile_face[j]; });
+    b.fill(profile, xz(t / 2, t / 2), b.count(6), near_side);
+    b.fill(far, Vec3(t / 2, width, t / 2), b.count(6), far_side);
+    return b.finish("l_bracket");
+}
+
+// A turned shaft: end disk, two steps of cylinders with a shoulder, a chamfer cone, and
+// a hemispherical end tangent to the last cylinder: 7 faces.
+Part stepped_shaft(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R1 = 0.5, R2 = 0.35, R3 = 0.25, z1 = 1.0, z2 = 1.8, z3 = 1.9, z4 = 2.6;  // a 45° chamfer
+    const int end = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int cyl1 = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R1));
+    const int shoulder = b.surface(plane({0, 0, z1}, Vec3::UnitZ()));
+    const int cyl2 = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R2));
+    // The chamfer's apex lies on the axis where its generator reaches r = 0; it opens downwards.
+    const double apex_z = z2 + R2 * (z3 - z2) / (R2 - R3);
+    const int chamfer = b.surface({QuadricType::cone, Vec3(0, 0, apex_z), -Vec3::UnitZ(), 0, std::atan((R2 - R3) / (z3 - z2))});
+    const int cyl3 = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R3));
+    const int ball = b.surface({QuadricType::sphere, Vec3(0, 0, z4), Vec3::UnitZ(), R3});
+
+    std::vector<double> angles;
+    for (double t : b.spacing(b.count(64))) angles.push_back(2 * kPi * t);
+    angles.pop_back();  // a closed loop: 2π is 0
+    auto ring = [&](double r, double z) {
+        std::vector<Vec3> out;
+        for (double a : angles) out.emplace_back(r * std::cos(a), r * std::sin(a), z);
+        return out;
+    };
+    const auto r1_bottom = ring(R1, 0), r1_top = ring(R1, z1), r2_bottom = ring(R2, z1), r2_top = ring(R2, z2);
+    const auto r3_bottom = ring(R3, z3), r3_top = ring(R3, z4);
+    b.fill(r1_bottom, Vec3::Zero(), b.count(5), end);
+    b.band(r1_bottom, r1_top, b.count(10), true, cyl1);
+    b.band(r1_top, r2_bottom, b.count(3), true, shoulder);
+    b.band(r2_bottom, r2_top, b.count(8), true, cyl2);
+    b.band(r2_top, r3_bottom, b.count(3), true, chamfer);
+    b.band(r3_bottom, r3_top, b.count(7), true, cyl3);
+    // The hemisphere: exact latitude rings joined pairwise, a fan at the pole.
+    std::vector<Vec3> previous = r3_top;
+    const std::vector<double> lat = b.spacing(b.count(10));
+    for (std::size_t i = 1; i + 1 < lat.size(); ++i) {
+        const double a = lat[i] * kPi / 2;
+        const std::vector<Vec3> next = ring(R3 * std::cos(a), z4 + R3 * std::sin(a));
+        b.band(previous, next, 1, true, ball);
+        previous = next;
+    }
+    b.fan(previous, Vec3(0, 0, z4 + R3), ball);
+    return b.finish("stepped_shaft");
+}
+
+// An annular flange with six bolt holes: 10 faces.
+Part flange(const PartOptions& o) {
+    PartBuilder b(o);
+    const double Ro = 1.0, Ri = 0.4, T = 0.25, Rp = 0.7, rb = 0.12;
+    const int holes = 6;
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, T}, Vec3::UnitZ()));
+    const int outer = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), Ro));
+    const int bore = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), Ri));
+    std::vector<int> hole_face;
+    for (int k = 0; k < holes; ++k) {
+        const double a = 2 * kPi * k / holes;
+        hole_face.push_back(b.surface(cylinder({Rp * std::cos(a), Rp * std::sin(a), 0}, Vec3::UnitZ(), rb)));
+    }
+    // Sector k spans the angles between the radial lines k and k + 1.
+    const int n_arc = b.count(10), n_radial = b.count(6), rows = b.count(6), z_rows = b.count(4);
+    std::vector<std::vector<Vec3>> radial;  // line k at angle (2k - 1)π/6, from Ri to Ro
+    for (int k = 0; k < holes; ++k) {
+        const double a = (2 * k - 1) * kPi / holes;
+        const Vec3 u(std::cos(a), std::sin(a), 0);
+        radial.push_back(b.segment(Ri * u, Ro * u, n_radial));
+    }
+    std::vector<Vec3> outer_loop, inner_loop;
+    for (int k = 0; k < holes; ++k) {
+        const std::vector<Vec3>&start = radial[k], &stop = radial[(k + 1) % holes];
+        const double a0 = (2 * k - 1) * kPi / holes, a1 = (2 * k + 1) * kPi / holes;
+        std::vector<Vec3> outer_arc{start.back()}, inner_arc{stop.front()};  // inner: clockwise
+        const std::vector<double> so = b.spacing(n_arc), si = b.spacing(n_arc);
+        for (int i = 1; i < n_arc; ++i) {
+            const double ao = a0 + so[i] * (a1 - a0), ai = a1 - si[i] * (a1 - a0);
+            outer_arc.emplace_back(Ro * std::cos(ao), Ro * std::sin(ao), 0);
+            inner_arc.emplace_back(Ri * std::cos(ai), Ri * std::sin(ai), 0);
+        }
+        outer_arc.push_back(stop.back());
+        inner_arc.push_back(start.front());
+        std::vector<Vec3> sector;
+        append_open(sector, outer_arc);
+        append_open(sector, std::vector<Vec3>(stop.rbegin(), stop.rend()));
+        append_open(sector, inner_arc);
+        append_open(sector, start);
+        append_open(outer_loop, outer_arc);
+        append_open(inner_loop, std::vector<Vec3>(inner_arc.rbegin(), inner_arc.rend()));
+        const double a = 2 * kPi * k / holes;
+        const Vec3 centre(Rp * std::cos(a), Rp * std::sin(a), 0);
+        const auto hole_bottom = onto_circle(sector, centre, rb), hole_top = at_height(hole_bottom, T);
+        b.band(sector, hole_bottom, rows, true, bottom);
+        b.band(at_height(sector, T), hole_top, rows, true, top);
+        b.band(hole_bottom, hole_top, z_rows, true, hole_face[k]);
+    }
+    b.band(outer_loop, at_height(outer_loop, T), z_rows, true, outer);
+    b.band(inner_loop, at_height(inner_loop, T), z_rows, true, bore);
+    return b.finish("flange");
+}
+
+// A plate half a percent of its size thick: 6 faces.
+Part thin_plate(const PartOptions& o) {
+    PartBuilder b(o);
+    const double W = 2, D = 1.2, T = 0.01;
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, T}, Vec3::UnitZ()));
+    const int front = b.surface(plane({0, 0, 0}, -Vec3::UnitY())), right = b.surface(plane({W, 0, 0}, Vec3::UnitX()));
+    const int back = b.surface(plane({0, D, 0}, Vec3::UnitY())), left = b.surface(plane({0, 0, 0}, -Vec3::UnitX()));
+    const int n = b.count(40);
+    std::vector<Vec3> outline;
+    std::vector<int> outline_face;
+    const Vec3 c00(0, 0, 0), c10(W, 0, 0), c11(W, D, 0), c01(0, D, 0);
+    for (const auto& [from, to, face, steps] : {std::tuple{c00, c10, front, n}, {c10, c11, right, n * 3 / 5},
+                                                {c11, c01, back, n}, {c01, c00, left, n * 3 / 5}}) {
+        const auto edge = b.segment(from, to, steps);
+        append_open(outline, edge);
+        outline_face.insert(outline_face.end(), edge.size() - 1, face);
+    }
+    const Vec3 centre(W / 2, D / 2, 0);
+    b.fill(outline, centre, b.count(16), bottom);
+    b.fill(at_height(outline, T), centre + Vec3(0, 0, T), b.count(16), top);
+    b.band(outline, at_height(outline, T), 1, true, [&](int j) { return outline_face[j]; });
+    return b.finish("thin_plate");
+}
+
+// A block with a through slot (two flat sides joined by half-cylinders, tangent): 10 faces.
+Part slotted_block(const PartOptions& o) {
+    PartBuilder b(o);
+    const double W = 2, D = 1.2, H = 0.4, a = 0.45, r = 0.2;
+    const Vec3 c(W / 2, D / 2, 0);
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, H}, Vec3::UnitZ()));
+    const int front = b.surface(plane({0, 0, 0}, -Vec3::UnitY())), right = b.surface(plane({W, 0, 0}, Vec3::UnitX()));
+    const int back = b.surface(plane({0, D, 0}, Vec3::UnitY())), left = b.surface(plane({0, 0, 0}, -Vec3::UnitX()));
+    // The slot's walls face its axis.
+    const int slot_low = b.surface(plane(c - Vec3(0, r, 0), Vec3::UnitY()));
+    const int slot_right = b.surface(cylinder(c + Vec3(a, 0, 0), Vec3::UnitZ(), r));
+    const int slot_high = b.surface(plane(c + Vec3(0, r, 0), -Vec3::UnitY()));
+    const int slot_left = b.surface(cylinder(c - Vec3(a, 0, 0), Vec3::UnitZ(), r));
+
+    // The slot outline, counter-clockwise from (-a, -r), with the face of each piece.
+    struct Sample {
+        Vec3 inner;
+        int slot_face;  // of the slot piece starting here
+    };
+    std::vector<Sample> slot;
+    const int n_flat = b.count(10), n_arc = b.count(10);
+    for (const Vec3& p : b.segment(c + Vec3(-a, -r, 0), c + Vec3(a, -r, 0), n_flat)) slot.push_back({p, slot_low});
+    slot.pop_back();
+    std::vector<double> s = b.spacing(n_arc);
+    for (int i = 0; i < n_arc; ++i) {
+        const double t = -kPi / 2 + s[i] * kPi;
+        slot.push_back({i == 0 ? c + Vec3(a, -r, 0) : c + Vec3(a + r * std::cos(t), r * std::sin(t), 0), slot_right});
+    }
+    for (const Vec3& p : b.segment(c + Vec3(a, r, 0), c + Vec3(-a, r, 0), n_flat)) slot.push_back({p, slot_high});
+    slot.pop_back();
+    s = b.spacing(n_arc);
+    for (int i = 0; i < n_arc; ++i) {
+        const double t = kPi / 2 + s[i] * kPi;
+        slot.push_back({i == 0 ? c + Vec3(-a, r, 0) : c + Vec3(-a + r * std::cos(t), r * std::sin(t), 0), slot_left});
+    }
+    // Rays from the centre: through each slot sample to the block's outline, and through
+    // each corner of the outline back to the slot.
+    auto to_outline = [&](const Vec3& d) {
+        const double t = std::min(std::abs(d.x()) > 0 ? W / 2 / std::abs(d.x()) : 1e300,
+                                  std::abs(d.y()) > 0 ? D / 2 / std::abs(d.y()) : 1e300);
+        return Vec3(c + t * d);
+    };
+    auto to_slot = [&](const Vec3& d) {
+        const Vec3 u = d.normalized();
+        if (std::abs(u.y()) > 0) {
+            const double t = r / std::abs(u.y());
+            if (std::abs(t * u.x()) <= a) return Vec3(c + t * u);
+        }
+        const Vec3 centre(u.x() > 0 ? a : -a, 0, 0);
+        const double along = u.dot(centre);
+        const double t = along + std::sqrt(along * along - centre.squaredNorm() + r * r);
+        return Vec3(c + t * u);
+    };
+    struct Ray {
+        double angle;
+        Vec3 inner, outer;
+        int slot_face, side;
+    };
+    std::vector<Ray> rays;
+    auto side_of = [&](double angle) {
+        const double corner = std::atan2(D, W);
+        if (angle < -kPi + corner || angle >= kPi - corner) return left;
+        if (angle < -corner) return front;
+        if (angle < corner) return right;
+        return back;
+    };
+    for (const Sample& q : slot) {
+        const Vec3 d = q.inner - c;
+        rays.push_back({std::atan2(d.y(), d.x()), q.inner, to_outline(d), q.slot_face, 0});
+    }
+    for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(W, 0, 0), Vec3(W, D, 0), Vec3(0, D, 0)}) {
+        const Vec3 d = corner - c;
+        const double angle = std::atan2(d.y(), d.x());
+        // The slot piece the ray crosses: that of the last sample before it, counter-clockwise.
+        int face = -1;
+        double best = -1e9, largest = -1e9;
+        for (const Sample& q : slot) {
+            const double qa = std::atan2((q.inner - c).y(), (q.inner - c).x());
+            if (qa <= angle && qa > best) best = qa, face = q.slot_face;
+            largest = std::max(largest, qa);
+        }
+        if (face < 0)
+            for (const Sample& q : slot)
+                if (std::atan2((q.inner - c).y(), (q.inner - c).x()) == largest) face = q.slot_face;
+        rays.push_back({angle, to_slot(d), corner, face, 0});
+    }
+    std::sort(rays.begin(), rays.end(), [](const Ray& x, const Ray& y) { return x.angle < y.angle; });
+    std::vector<Vec3> inner, outer;
+    std::vector<int> slot_face, side;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        inner.push_back(rays[i].inner);
+        outer.push_back(rays[i].outer);
+        slot_face.push_back(rays[i].slot_face);
+        // The outline piece from this ray to the next lies on the side of its midpoint's angle.
+        const double next = i + 1 < rays.size() ? rays[i + 1].angle : rays[0].angle + 2 * kPi;
+        double mid = 0.5 * (rays[i].angle + next);
+        if (mid > kPi) mid -= 2 * kPi;
+        side.push_back(side_of(mid));
+    }
+    const int rows = b.count(6), z_rows = b.count(4);
+    b.band(outer, inner, rows, true, bottom);
+    b.band(at_height(outer, H), at_height(inner, H), rows, true, top);
+    b.band(outer, at_height(outer, H), z_rows, true, [&](int j) { return side[j]; });
+    b.band(inner, at_height(inner, H), z_rows, true, [&](int j) { return slot_face[j]; });
+    return b.finish("slotted_block");
+}
+
+}  // namespace
+
+std::vector<std::string> part_names() {
+    return {"box_boss_hole", "l_bracket", "stepped_shaft", "flange", "thin_plate", "slotted_block"};
+}
+
+Part make_part(const std::string& name, const PartOptions& options) {
+    if (name == "box_boss_hole") return box_boss_hole(options);
+    if (name == "l_bracket") return l_bracket(options);
+    if (name == "stepped_shaft") return stepped_shaft(options);
+    if (name == "flange") return flange(options);
+    if (name == "thin_plate") return thin_plate(options);
+    if (name == "slotted_block") return slotted_block(options);
+    throw std::invalid_argument("unknown part '" + name + "'");
+}
+
+}  // namespace vqsa

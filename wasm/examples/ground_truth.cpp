@@ -1,0 +1,86 @@
+#include "ground_truth.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace vqsa {
+
+std::vector<int> best_assignment(const std::vector<std::vector<double>>& weight) {
+    const int rows = static_cast<int>(weight.size());
+    const int cols = rows ? static_cast<int>(weight[0].size()) : 0;
+    const int n = std::max(rows, cols);
+    auto cost = [&](int i, int j) { return i < rows && j < cols ? -weight[i][j] : 0.0; };
+    // Potentials u (rows), v (columns); p[j]: row matched to column j (1-based, 0 = none).
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> u(n + 1, 0), v(n + 1, 0);
+    std::vector<int> p(n + 1, 0), way(n + 1, 0);
+    for (int i = 1; i <= n; ++i) {
+        p[0] = i;
+        int j0 = 0;
+        std::vector<double> least(n + 1, inf);
+        std::vector<char> used(n + 1, 0);
+        do {
+            used[j0] = 1;
+            const int i0 = p[j0];
+            double delta = inf;
+            int j1 = 0;
+            for (int j = 1; j <= n; ++j) {
+                if (used[j]) continue;
+                const double c = cost(i0 - 1, j - 1) - u[i0] - v[j];
+                if (c < least[j]) least[j] = c, way[j] = j0;
+                if (least[j] < delta) delta = least[j], j1 = j;
+            }
+            for (int j = 0; j <= n; ++j) {
+                if (used[j]) u[p[j]] += delta, v[j] -= delta;
+                else least[j] -= delta;
+            }
+            j0 = j1;
+        } while (p[j0] != 0);
+        do {
+            const int j1 = way[j0];
+            p[j0] = p[j1];
+            j0 = j1;
+        } while (j0);
+    }
+    std::vector<int> assignment(rows, -1);
+    for (int j = 1; j <= n; ++j)
+        if (p[j] >= 1 && p[j] <= rows && j <= cols) assignment[p[j] - 1] = j - 1;
+    return assignment;
+}
+
+std::vector<CorpusCase> cad_corpus() {
+    std::vector<CorpusCase> cases;
+    std::uint64_t seed = 1;
+    for (const std::string& part : part_names())
+        for (const std::string variant : {"clean", "noisy", "irregular"}) {
+            PartOptions o;
+            o.random_pose = true;
+            o.seed = seed++;
+            o.noise = variant == "noisy" ? 0.002 : 0;
+            o.irregular = variant == "irregular";
+            cases.push_back({part, variant, o});
+        }
+    return cases;
+}
+
+PartitionScore score_partition(const Part& part, const std::vector<int>& labels, int regions) {
+    const int faces = static_cast<int>(part.surfaces.size());
+    std::vector<std::vector<double>> overlap(regions, std::vector<double>(faces, 0.0));
+    double total = 0;
+    for (std::size_t t = 0; t < labels.size(); ++t) {
+        const Triangle& tri = part.mesh.triangles[t];
+        const Vec3 &a = part.mesh.vertices[tri[0]], &b = part.mesh.vertices[tri[1]], &c = part.mesh.vertices[tri[2]];
+        const double area = 0.5 * (b - a).cross(c - a).norm();
+        total += area;
+        if (labels[t] >= 0) overlap[labels[t]][part.face[t]] += area;
+    }
+    PartitionScore score;
+    score.face_of = best_assignment(overlap);
+    double matched = 0;
+    for (int r = 0; r < regions; ++r)
+        if (score.face_of[r] >= 0) matched += overlap[r][score.face_of[r]];
+    score.accuracy = total > 0 ? matched / total : 0;
+    return score;
+}
+
+}  // namespace vqsa

@@ -1,0 +1,33 @@
+// Scoring a partition against a part's true faces: the area labelled as its true face
+// under the best one-to-one matching of regions to faces, and the types found.
+#pragma once
+
+#include "cad_parts.h"
+
+#include <string>
+#include <vector>
+
+namespace vqsa {
+
+struct PartitionScore {
+    double accuracy = 0;       // matched area / total area
+    std::vector<int> face_of;  // per region: its matched true face, or -1
+};
+
+// The corpus the CAD-extraction tests and benchmarks score: every part, clean, with
+// Gaussian noise of 0.2 % of the diagonal along the normals, and irregularly meshed, each
+// in its own random pose.
+struct CorpusCase {
+    std::string part, variant;  // variant: clean, noisy, irregular
+    PartOptions options;
+};
+std::vector<CorpusCase> cad_corpus();
+
+// `labels`: region of every kept triangle of part.mesh; `regions`: how many there are.
+PartitionScore score_partition(const Part& part, const std::vector<int>& labels, int regions);
+
+// The assignment maximising Σ weight[i][assignment[i]] over distinct columns (-1 where a
+// row gets none): the Hungarian method, O(n³) on the square completion.
+std::vector<int> best_assignment(const std::vector<std::vector<double>>& weight);
+
+}  // namespace vqsa
