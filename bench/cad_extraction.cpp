@@ -3,6 +3,7 @@
 // true face count and with the automatic count, the regions lying on two parts of their
 // quadric, and the time. `vqsa_cad [--parts a,b] [--variants clean,noisy] [--json FILE]`
 #include "cad_parts.h"
+#include "export/gltf_export.h"
 #include "ground_truth.h"
 #include "pipeline/pipeline.h"
 
@@ -50,7 +51,10 @@ int two_part_regions(const vqsa::Part& part, const vqsa::Result& r) {
     return count;
 }
 
-Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed) {
+std::string dump_dir;  // --dump: a GLB of every run, for bench/render.mjs
+bool verbose = false;
+
+Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::string& name) {
     vqsa::Options options;
     options.lloyd.proxies = proxies;
     options.lloyd.seed = seed;
@@ -65,6 +69,16 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed) {
     o.accuracy = vqsa::score_partition(part, r.face_labels, o.proxies).accuracy;
     o.two_part = two_part_regions(part, r);
     o.stop = vqsa::stop_reason_name(r.stop_reason);
+    if (!dump_dir.empty()) std::ofstream(dump_dir + "/" + name + ".glb", std::ios::binary) << vqsa::export_glb(part.mesh, r);
+    if (verbose) {
+        const vqsa::PartitionScore score = vqsa::score_partition(part, r.face_labels, o.proxies);
+        std::fprintf(stderr, "%s: %d proxies, stopped %s, accuracy %.4f\n", name.c_str(), o.proxies, o.stop.c_str(), o.accuracy);
+        for (const vqsa::ProxyResult& p : r.proxies) {
+            const int face = score.face_of[p.id];
+            std::fprintf(stderr, "  %2d %-22s faces %5d area %.4f rms %.2e  -> true %d %s\n", p.id, vqsa::type_name(p.type),
+                         p.faces, p.area, p.rms_error, face, face >= 0 ? vqsa::type_name(part.surfaces[face].type) : "-");
+        }
+    }
     return o;
 }
 
@@ -73,13 +87,17 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed) {
 int main(int argc, char** argv) {
     std::set<std::string> parts, variants;
     std::string json_path;
+    bool pose = true;  // --pose 0: the canonical pose, easier to look at
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string flag = argv[i];
         if (flag == "--parts") parts = list(argv[i + 1]);
         else if (flag == "--variants") variants = list(argv[i + 1]);
         else if (flag == "--json") json_path = argv[i + 1];
+        else if (flag == "--dump") dump_dir = argv[i + 1];
+        else if (flag == "--pose") pose = std::string(argv[i + 1]) == "1";
+        else if (flag == "--verbose") verbose = std::string(argv[i + 1]) == "1";
         else {
-            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE]\n";
+            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1]\n";
             return 2;
         }
     }
@@ -90,10 +108,13 @@ int main(int argc, char** argv) {
     int cases = 0;
     for (const vqsa::CorpusCase& c : vqsa::cad_corpus()) {
         if ((!parts.empty() && !parts.count(c.part)) || (!variants.empty() && !variants.count(c.variant))) continue;
-        const vqsa::Part part = vqsa::make_part(c.part, c.options);
+        vqsa::PartOptions options = c.options;
+        options.random_pose = pose;
+        const vqsa::Part part = vqsa::make_part(c.part, options);
         const int faces = static_cast<int>(part.surfaces.size());
-        const Outcome truth = run(part, faces, c.options.seed);
-        const Outcome automatic = truth;  // until the automatic count exists
+        const std::string name = c.part + "_" + c.variant;
+        const Outcome truth = run(part, faces, c.options.seed, name + "_true");
+        const Outcome automatic = run(part, 0, c.options.seed, name + "_auto");
         std::printf("| %s | %s | %d | %zu | %.4f | %d | %.4f | %d | %.2f |\n", c.part.c_str(), c.variant.c_str(), faces,
                     part.mesh.triangles.size(), truth.accuracy, automatic.proxies, automatic.accuracy,
                     truth.two_part + automatic.two_part, truth.seconds + automatic.seconds);

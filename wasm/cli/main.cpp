@@ -58,7 +58,6 @@ struct Arguments {
     std::string input, report, labels, projected, glb;
     vqsa::Options options;
     bool quiet = false;
-    bool default_proxies = false;  // no --proxies and no --tolerance: 20, or fewer on tiny meshes
 };
 
 Arguments parse(int argc, char** argv) {
@@ -106,7 +105,6 @@ Arguments parse(int argc, char** argv) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--") + e.what());
     }
-    a.default_proxies = !given.contains("proxies") && a.options.lloyd.tolerance == 0;
     return a;
 }
 
@@ -132,8 +130,6 @@ int main(int argc, char** argv) {
         const vqsa::Mesh mesh = args.input.rfind(example, 0) == 0 ? vqsa::example_mesh(args.input.substr(example.size()))
                                                                  : vqsa::read_mesh_file(args.input);
         const double load = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (args.default_proxies)
-            args.options.lloyd.proxies = static_cast<int>(std::min<std::size_t>(20, mesh.triangles.size()));
         vqsa::Pipeline pipeline(mesh, args.options);
         std::string last_phase;
         pipeline.run([&](const vqsa::Progress& p) {

@@ -315,32 +315,52 @@ Part l_bracket(const PartOptions& o) {
     const int near_side = b.surface(plane({0, 0, 0}, -Vec3::UnitY()));
     const int far_side = b.surface(plane({0, width, 0}, Vec3::UnitY()));
 
+    // The profile as two paths across the thickness from each other, sampled alike, so
+    // that the side caps are bands of quads from one to the other: the outer one (bottom,
+    // outer vertical) and the inner one (leg top, fillet, inner vertical). The outer
+    // path's corner faces the fillet.
+    const int n = b.count(24), k = b.count(8);
+    const auto outer_bottom_far = b.segment(xz(L, 0), xz(t + r, 0), n), outer_bottom_near = b.segment(xz(t + r, 0), xz(0, 0), k);
+    const auto outer_side_near = b.segment(xz(0, 0), xz(0, t + r), k), outer_side_far = b.segment(xz(0, t + r), xz(0, Hh), n);
+    const auto leg = b.segment(xz(L, t), xz(t + r, t), n), inner_side = b.segment(xz(t, t + r), xz(t, Hh), n);
+    std::vector<Vec3> arc;
+    const std::vector<double> s = b.spacing(2 * k);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double a = -kPi / 2 - s[i] * kPi / 2;  // from straight below the axis to its left
+        arc.push_back(i == 0 ? xz(t + r, t) : i + 1 == s.size() ? xz(t, t + r) : xz(t + r + r * std::cos(a), t + r + r * std::sin(a)));
+    }
+    std::vector<Vec3> outer_path, inner_path;
+    for (const auto* piece : {&outer_bottom_far, &outer_bottom_near, &outer_side_near}) append_open(outer_path, *piece);
+    outer_path.insert(outer_path.end(), outer_side_far.begin(), outer_side_far.end());
+    append_open(inner_path, leg);
+    append_open(inner_path, arc);
+    inner_path.insert(inner_path.end(), inner_side.begin(), inner_side.end());
+
+    // The closed profile, counter-clockwise, with the face of each segment.
     std::vector<Vec3> profile;
     std::vector<int> profile_face;
     auto add = [&](const std::vector<Vec3>& piece, int face) {
         append_open(profile, piece);
         profile_face.insert(profile_face.end(), piece.size() - 1, face);
     };
-    const int n = b.count(14);
-    add(b.segment(xz(0, 0), xz(L, 0), 2 * n), bottom);
-    add(b.segment(xz(L, 0), xz(L, t), b.count(3)), end);
-    add(b.segment(xz(L, t), xz(t + r, t), n), leg_top);
-    std::vector<Vec3> arc;
-    const std::vector<double> s = b.spacing(b.count(10));
-    for (std::size_t i = 0; i < s.size(); ++i) {
-        const double a = -kPi / 2 - s[i] * kPi / 2;  // from straight below the axis to its left
-        arc.push_back(i == 0 ? xz(t + r, t) : i + 1 == s.size() ? xz(t, t + r) : xz(t + r + r * std::cos(a), t + r + r * std::sin(a)));
-    }
-    add(arc, fillet);
-    add(b.segment(xz(t, t + r), xz(t, Hh), n), inner);
-    add(b.segment(xz(t, Hh), xz(0, Hh), b.count(3)), top);
-    add(b.segment(xz(0, Hh), xz(0, 0), 2 * n), outer);
+    const std::size_t bottom_points = outer_bottom_far.size() + outer_bottom_near.size() - 1;
+    add(std::vector<Vec3>(outer_path.begin(), outer_path.begin() + bottom_points), bottom);      // (L,0) → (0,0)
+    add(std::vector<Vec3>(outer_path.begin() + bottom_points - 1, outer_path.end()), outer);     // (0,0) → (0,Hh)
+    add({xz(0, Hh), xz(t, Hh)}, top);
+    const std::vector<Vec3> inner_reversed(inner_path.rbegin(), inner_path.rend());
+    add(std::vector<Vec3>(inner_reversed.begin(), inner_reversed.begin() + inner_side.size()), inner);
+    add(std::vector<Vec3>(inner_reversed.begin() + inner_side.size() - 1, inner_reversed.begin() + inner_side.size() + arc.size() - 1), fillet);
+    add(std::vector<Vec3>(inner_reversed.begin() + inner_side.size() + arc.size() - 2, inner_reversed.end()), leg_top);
+    add({xz(L, t), xz(L, 0)}, end);
 
     std::vector<Vec3> far = profile;
     for (Vec3& p : far) p.y() = width;
-    b.band(profile, far, b.count(10), true, [&](int j) { return profile_face[j]; });
-    b.fill(profile, xz(t / 2, t / 2), b.count(6), near_side);
-    b.fill(far, Vec3(t / 2, width, t / 2), b.count(6), far_side);
+    b.band(profile, far, b.count(16), true, [&](int j) { return profile_face[j]; });
+    std::vector<Vec3> outer_far = outer_path, inner_far = inner_path;
+    for (Vec3& p : outer_far) p.y() = width;
+    for (Vec3& p : inner_far) p.y() = width;
+    b.band(outer_path, inner_path, 1, false, near_side);
+    b.band(outer_far, inner_far, 1, false, far_side);
     return b.finish("l_bracket");
 }
 
@@ -485,7 +505,7 @@ Part slotted_block(const PartOptions& o) {
         int slot_face;  // of the slot piece starting here
     };
     std::vector<Sample> slot;
-    const int n_flat = b.count(10), n_arc = b.count(10);
+    const int n_flat = b.count(16), n_arc = b.count(14);
     for (const Vec3& p : b.segment(c + Vec3(-a, -r, 0), c + Vec3(a, -r, 0), n_flat)) slot.push_back({p, slot_low});
     slot.pop_back();
     std::vector<double> s = b.spacing(n_arc);
@@ -564,7 +584,7 @@ Part slotted_block(const PartOptions& o) {
         if (mid > kPi) mid -= 2 * kPi;
         side.push_back(side_of(mid));
     }
-    const int rows = b.count(6), z_rows = b.count(4);
+    const int rows = b.count(8), z_rows = b.count(8);
     b.band(outer, inner, rows, true, bottom);
     b.band(at_height(outer, H), at_height(inner, H), rows, true, top);
     b.band(outer, at_height(outer, H), z_rows, true, [&](int j) { return side[j]; });

@@ -35,21 +35,29 @@ Flooding::Entry Flooding::pop() {
     return top;
 }
 
-void Flooding::run(const Model& model, FaceErrors& errors, const std::vector<int>& seeds, std::vector<int>& labels) {
+void Flooding::run(const Model& model, FaceErrors& errors, const std::vector<int>& seeds, std::vector<int>& labels,
+                   const std::vector<char>* crease) {
     const DualGraph& graph = model.graph;
     queued_.assign(2 * labels.size(), -1);
+    crossed_.assign(labels.size(), 0);
     heap_.clear();
+    constexpr std::uint64_t kCrossed = std::uint64_t{1} << 63;
 
     auto queue_neighbours = [&](int face, int proxy) {
         for (int e = graph.begin(face); e < graph.end(face); ++e) {
             const int n = graph.neighbor[e];
-            if (labels[n] >= 0 || queued_[2 * n] == proxy || queued_[2 * n + 1] == proxy) continue;
+            if (labels[n] >= 0) continue;
+            const int crossed = crossed_[face] || (crease && (*crease)[e]);
+            const int code = 2 * proxy + crossed;
+            if (queued_[2 * n] == 2 * proxy || queued_[2 * n + 1] == 2 * proxy || queued_[2 * n] == code ||
+                queued_[2 * n + 1] == code)
+                continue;
             queued_[2 * n + 1] = queued_[2 * n];
-            queued_[2 * n] = proxy;
+            queued_[2 * n] = code;
             const float error = static_cast<float>(errors(n, proxy));
             std::uint32_t bits;
             std::memcpy(&bits, &error, sizeof bits);
-            push({std::uint64_t{bits} << 32 | static_cast<std::uint32_t>(n), proxy});
+            push({(crossed ? kCrossed : 0) | std::uint64_t{bits} << 32 | static_cast<std::uint32_t>(n), proxy});
         }
     };
 
@@ -60,6 +68,7 @@ void Flooding::run(const Model& model, FaceErrors& errors, const std::vector<int
         const int face = static_cast<int>(e.key & 0xffffffffu);
         if (labels[face] >= 0) continue;
         labels[face] = e.proxy;
+        crossed_[face] = (e.key & kCrossed) != 0;
         queue_neighbours(face, e.proxy);
     }
 }

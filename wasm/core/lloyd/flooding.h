@@ -11,19 +11,24 @@ namespace vqsa {
 
 // Grows every proxy's region from its seed face, always taking next the unlabelled
 // face with the smallest error to the region reaching it. Regions come out connected.
+// With creases, a face reached across one (or from a face that was) comes after every
+// face reached without: each region fills its own chart before it spills into others.
 // The engine keeps one Flooding and reuses its storage, so a run does not allocate.
 class Flooding {
 public:
     // `labels`: faces with a label ≥ 0 are fixed and block the flood; the others must
     // be -1 and get the label of a seed that reaches them (or stay -1 if none does).
     // Seed faces must be unlabelled; seed i gets label i.
-    void run(const Model& model, FaceErrors& errors, const std::vector<int>& seeds, std::vector<int>& labels);
+    // `crease`: per dual-graph link, or null for none.
+    void run(const Model& model, FaceErrors& errors, const std::vector<int>& seeds, std::vector<int>& labels,
+             const std::vector<char>* crease = nullptr);
 
 private:
     struct Entry {
-        // The error as float bits (monotone for non-negative floats) above the face
-        // index, then the proxy: a strict total order, so every heap pops the same
-        // sequence and native and WASM builds agree.
+        // Whether a crease was crossed (the float's free sign bit), the error as float
+        // bits (monotone for non-negative floats), the face index, then the proxy: a
+        // strict total order, so every heap pops the same sequence and native and WASM
+        // builds agree.
         std::uint64_t key;
         int proxy;
         bool operator>(const Entry& o) const { return key != o.key ? key > o.key : proxy > o.proxy; }
@@ -32,9 +37,11 @@ private:
     Entry pop();
 
     std::vector<Entry> heap_;
-    // The last two proxies that queued each face: skips re-queuing a face for the
-    // same proxy from another neighbour (the error would be the same).
+    // The last two (proxy, crossed) that queued each face: skips re-queuing a face for
+    // the same proxy from another neighbour (the error would be the same) unless the new
+    // path crossed no crease and the old one did.
     std::vector<int> queued_;
+    std::vector<char> crossed_;  // per labelled face: reached across a crease
 };
 
 }  // namespace vqsa

@@ -27,6 +27,8 @@ const char* stop_reason_name(StopReason reason) {
         case StopReason::none: return "none";
         case StopReason::proxies: return "proxies";
         case StopReason::tolerance: return "tolerance";
+        case StopReason::fitted: return "fitted";
+        case StopReason::no_gain: return "no_gain";
         case StopReason::max_iterations: return "max_iterations";
         case StopReason::cancelled: return "cancelled";
         case StopReason::exhausted: return "exhausted";
@@ -41,6 +43,7 @@ void validate(const LloydOptions& o) {
     if (!(o.convergence >= 0 && o.convergence < 1)) fail("convergence must be in [0, 1)");
     if (o.teleports < 0) fail("teleports must be non-negative");
     if (!(o.split_fraction > 0 && o.split_fraction < 0.5)) fail("split fraction must be in (0, 0.5)");
+    if (!(o.noise_factor > 0) || !(o.precision >= 0) || !(o.min_gain >= 0)) fail("noise factor, precision or gain out of range");
 }
 
 Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options) {
@@ -74,8 +77,17 @@ void refit_regions(const Model& model, const std::vector<int>& labels, const Llo
 }
 
 double evaluate_regions(const Model& model, const std::vector<int>& labels, std::vector<Proxy>& proxies,
-                        std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed) {
+                        std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed,
+                        const std::vector<int>* chart) {
+    // With charts, a seed stays in the chart of the previous one while its region still
+    // reaches it: a region does not wander into a neighbouring chart because, under
+    // noise, its face of least error happens to lie there.
+    std::vector<int> anchor(proxies.size(), -1);
+    if (chart)
+        for (std::size_t i = 0; i < proxies.size(); ++i)
+            if (proxies[i].seed >= 0) anchor[i] = (*chart)[proxies[i].seed];
     std::vector<double> best(proxies.size(), std::numeric_limits<double>::infinity());
+    std::vector<char> anchored(proxies.size(), 0);  // the current seed lies in the anchor chart
     for (Proxy& p : proxies) p.error = 0, p.seed = -1;
     errors.resize(model.face_count());
     double energy = 0;
@@ -87,7 +99,9 @@ double evaluate_regions(const Model& model, const std::vector<int>& labels, std:
         errors[f] = e;
         proxies[l].error += e;
         energy += e;
-        if (e < best[l]) best[l] = e, proxies[l].seed = f;
+        const bool in_anchor = anchor[l] >= 0 && (*chart)[f] == anchor[l];
+        if (in_anchor && !anchored[l]) best[l] = e, proxies[l].seed = f, anchored[l] = 1;
+        else if (in_anchor == bool(anchored[l]) && e < best[l]) best[l] = e, proxies[l].seed = f;
     }
     return energy;
 }
@@ -106,32 +120,56 @@ std::vector<int> seeds_of(const std::vector<Proxy>& proxies) {
     return out;
 }
 
-Lloyd::Lloyd(const Model& model, const LloydOptions& options) : model_(model), options_(options) {
+Lloyd::Lloyd(const Model& model, const LloydOptions& options)
+    : model_(model), options_(options), rng_(options.seed) {
     validate(options_);
     if (model.face_count() == 0) throw std::invalid_argument("the mesh has no faces");
     if (options_.proxies > model.face_count())
         throw std::invalid_argument("proxies (" + std::to_string(options_.proxies) + ") exceeds the number of faces (" +
                                     std::to_string(model.face_count()) + ")");
+    FeatureOptions features = options_.features;
+    if (options_.init == Initialization::paper) features.crease_angle = 180;
+    features_ = detect_features(model_, features);
+    chart_faces_.resize(features_.chart_count);
+    for (int f = 0; f < model_.face_count(); ++f) chart_faces_[features_.chart[f]].push_back(f);
+    face_noise_.resize(model_.face_count());
+    for (int f = 0; f < model_.face_count(); ++f) {
+        const double r = options_.noise_factor * features_.roughness[f];
+        face_noise_[f] = model_.areas[f] * r * r;
+    }
     initialize();
 }
 
 void Lloyd::initialize() {
     const int n = model_.face_count();
-    // One seed per connected component, drawn reproducibly from `seed`.
-    std::vector<int> size(model_.component_count, 0), pick(model_.component_count);
-    for (int f = 0; f < n; ++f) ++size[model_.component[f]];
-    SplitMix64 rng(options_.seed);
-    for (int c = 0; c < model_.component_count; ++c) pick[c] = static_cast<int>(rng.below(size[c]));
-    std::vector<int> component_seeds(model_.component_count, -1);
-    for (int f = 0; f < n; ++f) {
-        int& k = pick[model_.component[f]];
-        if (k-- == 0) component_seeds[model_.component[f]] = f;
+    // One seed per connected component, drawn reproducibly from `seed`: any face of it
+    // (paper), or a face of its largest chart.
+    std::vector<int> pool(model_.component_count, -1);  // the chart (or face list) to draw from
+    std::vector<double> best(model_.component_count, -1);
+    if (options_.init == Initialization::features) {
+        std::vector<double> area(features_.chart_count, 0);
+        for (int f = 0; f < n; ++f) area[features_.chart[f]] += model_.areas[f];
+        for (int c = 0; c < features_.chart_count; ++c) {
+            const int component = model_.component[chart_faces_[c][0]];
+            if (area[c] > best[component]) best[component] = area[c], pool[component] = c;
+        }
+        for (int c : pool) add_proxy(chart_faces_[c][rng_.below(chart_faces_[c].size())]);
+    } else {
+        std::vector<int> size(model_.component_count, 0), pick(model_.component_count);
+        for (int f = 0; f < n; ++f) ++size[model_.component[f]];
+        for (int c = 0; c < model_.component_count; ++c) pick[c] = static_cast<int>(rng_.below(size[c]));
+        std::vector<int> component_seeds(model_.component_count, -1);
+        for (int f = 0; f < n; ++f) {
+            int& k = pick[model_.component[f]];
+            if (k-- == 0) component_seeds[model_.component[f]] = f;
+        }
+        for (int s : component_seeds) add_proxy(s);
     }
-    for (int s : component_seeds) add_proxy(s);
     labels_.assign(n, -1);
     errors_.assign(n, 0.0);
     teleports_left_ = options_.teleports;
     splits_left_ = 2 * std::max(options_.proxies, 16);
+    repairs_left_ = std::max(options_.proxies, 16);
     iterating_ = true;
     stage_iteration_ = 0;
     previous_energy_ = std::numeric_limits<double>::infinity();
@@ -184,7 +222,8 @@ void Lloyd::iterate() {
     labels_.assign(previous_labels_.size(), -1);
     face_errors_.reset(model_, quadrics_of(proxies_));
     face_errors_.know(previous_labels_, errors_);
-    flooding_.run(model_, face_errors_, seeds_of(proxies_), labels_);
+    flooding_.run(model_, face_errors_, seeds_of(proxies_), labels_,
+                  options_.init == Initialization::features ? &features_.crease : nullptr);
     changed_.assign(proxies_.size(), 0);
     for (std::size_t i = 0; i < proxies_.size(); ++i) changed_[i] = !proxies_[i].fitted;
     for (int f = 0; f < model_.face_count(); ++f)
@@ -199,10 +238,12 @@ void Lloyd::iterate() {
 }
 
 void Lloyd::evaluate(const std::vector<char>* changed) {
-    energy_ = evaluate_regions(model_, labels_, proxies_, errors_, face_errors_, changed);
+    energy_ = evaluate_regions(model_, labels_, proxies_, errors_, face_errors_, changed,
+                               options_.init == Initialization::features ? &features_.chart : nullptr);
 }
 
 void Lloyd::start_operation(Operation operation) {
+    if (operation != Operation::insert) energy_before_insert_ = -1;
     last_operation_ = operation;
     iterating_ = true;
     stage_iteration_ = 0;
@@ -224,11 +265,20 @@ void Lloyd::decide() {
 
     const int count = static_cast<int>(proxies_.size());
     const int target = options_.proxies;
-    if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
-        return stop(StopReason::tolerance);
+    // Valid at every stop: a region on two parts of its quadric is split first, whatever the count.
+    if (splits_left_ > 0 && split_invalid()) {
+        --splits_left_;
+        return start_operation(Operation::split);
+    }
     if (target > 0 && count > target) {
         if (merge_cheapest(false)) return start_operation(Operation::merge);
         return stop(StopReason::proxies);
+    }
+    if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
+        return stop(StopReason::tolerance);
+    if (repairs_left_ > 0 && (target == 0 || count == target) && repair_stuck()) {
+        --repairs_left_;
+        return start_operation(Operation::teleport);
     }
     if (target > 0 && count == target) {
         if (teleports_left_ > 0) {
@@ -242,31 +292,91 @@ void Lloyd::decide() {
         }
         return stop(StopReason::proxies);
     }
-    if (count >= model_.face_count()) return stop(StopReason::exhausted);
-    // Growing: an invalid region is split instead of inserting elsewhere.
-    if (splits_left_ > 0 && split_invalid()) {
-        --splits_left_;
-        return start_operation(Operation::split);
+    if (automatic()) {
+        // The last insertion is judged by what it bought: too little, and growing stops.
+        if (energy_before_insert_ >= 0 && !finishing_ && misfit_charts().empty() &&
+            !(energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_)))
+            finishing_ = true, finish_reason_ = StopReason::no_gain;
+        if (!finishing_) {
+            bool all_explained = misfit_charts().empty();
+            for (int i = 0; i < count && all_explained; ++i) all_explained = explained(i);
+            if (all_explained) finishing_ = true, finish_reason_ = StopReason::fitted;
+        }
+        if (finishing_) {
+            // One surface, one region: merge neighbours that lie on the same surface.
+            if (merge_same_surface()) return start_operation(Operation::merge);
+            return stop(finish_reason_);
+        }
     }
+    if (count >= model_.face_count()) return stop(StopReason::exhausted);
     // Far from the target, several proxies go in at once (into distinct regions): Lloyd
     // then runs once per batch rather than once per proxy.
     int batch = std::max(1, static_cast<int>(count * options_.insertion_batch));
     if (target > 0) batch = std::min(batch, target - count);
-    insert_farthest(batch);
-    if (static_cast<int>(proxies_.size()) == count) return stop(StopReason::exhausted);
+    energy_before_insert_ = energy_;
+    int added = options_.init == Initialization::features ? insert_into_charts(batch) : 0;
+    added += insert_farthest(batch - added);
+    inserted_ = added;
+    if (added == 0) return stop(automatic() ? StopReason::fitted : StopReason::exhausted);
     start_operation(Operation::insert);
 }
 
-void Lloyd::insert_farthest(int count) {
+double Lloyd::noise_energy(int proxy) const {
+    double sum = 0;
+    for (int f = 0; f < model_.face_count(); ++f)
+        if (labels_[f] == proxy) sum += face_noise_[f];
+    return sum;
+}
+
+bool Lloyd::explained(int proxy) const {
+    const Proxy& p = proxies_[proxy];
+    return p.error <= noise_energy(proxy) || p.error <= p.area * options_.precision * options_.precision;
+}
+
+std::vector<int> Lloyd::misfit_charts() const {
+    if (options_.init != Initialization::features) return {};
+    std::vector<char> seeded(features_.chart_count, 0);
+    for (const Proxy& p : proxies_)
+        if (p.seed >= 0) seeded[features_.chart[p.seed]] = 1;
+    std::vector<std::pair<double, int>> excess;  // (excess error, chart)
+    for (int c = 0; c < features_.chart_count; ++c) {
+        if (seeded[c]) continue;
+        double error = 0, noise = 0, area = 0;  // area: a floor for rounding
+        for (int f : chart_faces_[c]) error += errors_[f], noise += face_noise_[f], area += model_.areas[f];
+        // Charts are the part's structure: no precision floor, only the noise excuses a misfit.
+        if (error > noise + 1e-12 * area) excess.emplace_back(error - noise, c);
+    }
+    std::sort(excess.begin(), excess.end(), [](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first > b.first : a.second < b.second;
+    });
+    std::vector<int> out;
+    for (const auto& e : excess) out.push_back(e.second);
+    return out;
+}
+
+int Lloyd::insert_into_charts(int count) {
+    int added = 0;
+    for (int c : misfit_charts()) {
+        if (added == count) break;
+        const std::vector<int>& faces = chart_faces_[c];
+        add_proxy(faces[rng_.below(faces.size())]);
+        ++added;
+    }
+    return added;
+}
+
+int Lloyd::insert_farthest(int count) {
     // The regions of largest total error, and in each the face of largest error.
     std::vector<int> order(proxies_.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
     std::sort(order.begin(), order.end(), [&](int a, int b) {
         return proxies_[a].error != proxies_[b].error ? proxies_[a].error > proxies_[b].error : a < b;
     });
+    int added = 0;
     for (int region : order) {
-        if (count == 0) return;
+        if (added == count) break;
         if (proxies_[region].faces < 2 || !(proxies_[region].error > 0)) continue;
+        if (automatic() && explained(region)) continue;
         // The worst face counted with its neighbours: a lone outlier face (a sliver, a
         // spike) would seed a proxy that never grows.
         int worst = -1;
@@ -280,40 +390,63 @@ void Lloyd::insert_farthest(int count) {
             if (e > worst_error) worst_error = e, worst = f;
         }
         add_proxy(worst);
-        --count;
+        ++added;
     }
+    return added;
+}
+
+Lloyd::Parts Lloyd::parts(int proxy) const {
+    Parts out;
+    Classification c = classify_proxy(proxy);
+    // A double plane from a non-planar quadric is the limit of two parallel planes: its
+    // faces may still lie on both sides (a thin plate), so it is judged as a pair.
+    if (c.type == QuadricType::plane && !proxies_[proxy].quadric.is_plane()) c.type = QuadricType::parallel_planes;
+    if (!has_two_parts(c.type)) return out;
+    // Faces closer to the parts' separation than the noise are on neither.
+    double noise = 0;
+    for (int f = 0; f < model_.face_count(); ++f)
+        if (labels_[f] == proxy) noise += face_noise_[f];
+    const double margin = std::sqrt(noise / std::max(proxies_[proxy].area, 1e-300)) + 1e-9;
+    for (int f = 0; f < model_.face_count(); ++f) {
+        if (labels_[f] != proxy) continue;
+        const Vec3 y = c.rotation.transpose() * (model_.barycentres[f] - c.center);
+        const double separation = c.type == QuadricType::intersecting_planes ? std::hypot(y[0], y[1])
+                                  : c.type == QuadricType::hyperbolic_cylinder ? std::abs(y[0])
+                                                                               : std::abs(y[2]);
+        const int side = part_of(c, model_.barycentres[f]);
+        if (side == 0 || separation <= margin) continue;
+        const int k = side > 0 ? 0 : 1;
+        out.area[k] += model_.areas[f];
+        ++out.faces[k];
+        if (out.best[k] < 0 || errors_[f] < errors_[out.best[k]]) out.best[k] = f;
+    }
+    return out;
+}
+
+bool Lloyd::invalid(int proxy, Parts* result) const {
+    if (proxies_[proxy].faces < options_.min_quadric_faces) return false;
+    const Parts p = parts(proxy);
+    if (result) *result = p;
+    const int minor = p.area[0] < p.area[1] ? 0 : 1;
+    return p.faces[minor] >= 3 && p.area[minor] >= options_.split_fraction * proxies_[proxy].area;
 }
 
 bool Lloyd::split_invalid() {
     // The invalid region of largest error is split; one per decision, like an insertion.
-    int chosen = -1, best[2] = {-1, -1};
-    const int count = static_cast<int>(proxies_.size());
-    for (int i = 0; i < count; ++i) {
-        if (proxies_[i].faces < 2 * options_.min_quadric_faces) continue;
+    int chosen = -1;
+    Parts chosen_parts;
+    for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
         if (chosen >= 0 && proxies_[i].error <= proxies_[chosen].error) continue;
-        const Classification c = classify_proxy(i);
-        if (!has_two_parts(c.type)) continue;
-        double part_area[2] = {0, 0};
-        int part_best[2] = {-1, -1};
-        for (int f = 0; f < model_.face_count(); ++f) {
-            if (labels_[f] != i) continue;
-            const int part = part_of(c, model_.barycentres[f]);
-            if (part == 0) continue;
-            const int k = part > 0 ? 0 : 1;
-            part_area[k] += model_.areas[f];
-            if (part_best[k] < 0 || errors_[f] < errors_[part_best[k]]) part_best[k] = f;
-        }
-        if (std::min(part_area[0], part_area[1]) < options_.split_fraction * proxies_[i].area) continue;
-        chosen = i;
-        best[0] = part_best[0], best[1] = part_best[1];
+        Parts p;
+        if (invalid(i, &p)) chosen = i, chosen_parts = p;
     }
     if (chosen < 0) return false;
     // Each part restarts from a plane through its best face.
-    proxies_[chosen].quadric = plane_through(best[0]);
+    proxies_[chosen].quadric = plane_through(chosen_parts.best[0]);
     proxies_[chosen].fitted = false;
     evaluate();
-    proxies_[chosen].seed = best[0];
-    add_proxy(best[1]);
+    proxies_[chosen].seed = chosen_parts.best[0];
+    add_proxy(chosen_parts.best[1]);
     return true;
 }
 
@@ -340,23 +473,101 @@ bool Lloyd::merge_cheapest(bool gated) {
         if (cost >= best_cost) continue;
         const RegionFrame region = region_frame(united);
         const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (has_two_parts(type)) continue;
+        if (has_two_parts(type) || (type == QuadricType::plane && !fit.quadric.is_plane())) continue;
         best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
     }
     if (best_pair < 0) return false;
-    const auto [keep, gone] = pairs[best_pair];
+    merge_pair(pairs[best_pair].first, pairs[best_pair].second, best_fit);
+    return true;
+}
+
+bool Lloyd::merge_same_surface() {
+    // Two regions lie on one surface when the union's fit explains it as well as the
+    // two fits explain their parts, up to the noise: the union costs no more than the
+    // parts' own fit errors plus a quarter, or than the noise of its faces.
+    const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
+    std::vector<double> noise(proxies_.size(), 0);
+    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += face_noise_[f];
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_pair = -1;
+    Fit best_fit;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const auto [i, j] = pairs[k];
+        const Proxy &a = proxies_[i], &b = proxies_[j];
+        Moments united = a.moments;
+        add_to(united, b.moments);
+        const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
+        const double parts = a.area * a.fit_error + b.area * b.fit_error;
+        const double united_error = united[0] * fit.mean_squared;
+        if (!(united_error <= 1.25 * parts + 1e-12 * united[0] || united_error <= noise[i] + noise[j])) continue;
+        const RegionFrame region = region_frame(united);
+        const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
+        if (has_two_parts(type) || (type == QuadricType::plane && !fit.quadric.is_plane())) continue;
+        const double cost = united_error - parts;
+        if (cost < best_cost) best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
+    }
+    if (best_pair < 0) return false;
+    merge_pair(pairs[best_pair].first, pairs[best_pair].second, best_fit);
+    return true;
+}
+
+bool Lloyd::repair_stuck() {
+    const int count = static_cast<int>(proxies_.size());
+    if (count < 2) return false;
+    // The region whose errors the noise explains least, and the smallest negligible one.
+    int worst = -1, stuck = -1;
+    double worst_excess = 0;
+    const int handful = std::max(4, model_.face_count() / 1000);
+    std::vector<double> noise(count, 0);
+    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += face_noise_[f];
+    for (int i = 0; i < count; ++i) {
+        const Proxy& p = proxies_[i];
+        const double floor = p.area * options_.precision * options_.precision;
+        const double excess = p.error - std::max(noise[i], automatic() ? floor : 0.0);
+        if (excess > worst_excess) worst_excess = excess, worst = i;
+    }
+    if (worst < 0) return false;
+    for (int i = 0; i < count; ++i) {
+        const Proxy& p = proxies_[i];
+        if (i == worst || p.faces > handful) continue;
+        // Negligible: what it explains (its error were its faces taken by a neighbour) is
+        // far below what the worst region leaves unexplained.
+        if (p.error + noise[i] < 0.1 * worst_excess && (stuck < 0 || p.area < proxies_[stuck].area)) stuck = i;
+    }
+    if (stuck < 0) return false;
+    // Its faces go to the neighbour sharing most edges; a new proxy starts in the worst region.
+    std::vector<int> shared(count, 0);
+    const DualGraph& g = model_.graph;
+    for (int f = 0; f < model_.face_count(); ++f)
+        if (labels_[f] == stuck)
+            for (int e = g.begin(f); e < g.end(f); ++e)
+                if (labels_[g.neighbor[e]] != stuck) ++shared[labels_[g.neighbor[e]]];
+    const int into = static_cast<int>(std::max_element(shared.begin(), shared.end()) - shared.begin());
+    if (shared[into] == 0) return false;  // alone in its component: it must stay
+    Moments united = proxies_[into].moments;
+    add_to(united, proxies_[stuck].moments);
+    const Fit fit = fit_proxy(united, proxies_[into].faces + proxies_[stuck].faces, options_);
+    const int worst_after = worst > stuck ? worst - 1 : worst;
+    merge_pair(into, stuck, fit);
+    const double error = proxies_[worst_after].error;
+    proxies_[worst_after].error = std::numeric_limits<double>::infinity();  // the one region insert_farthest takes
+    const int added = insert_farthest(1);
+    proxies_[worst_after].error = error;
+    return added == 1;
+}
+
+void Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
     Proxy& p = proxies_[keep];
     add_to(p.moments, proxies_[gone].moments);
     p.area = p.moments[0];
     p.faces += proxies_[gone].faces;
-    p.quadric = best_fit.quadric;
-    p.fit_error = best_fit.mean_squared;
+    p.quadric = fit.quadric;
+    p.fit_error = fit.mean_squared;
     p.fitted = true;
     for (int& l : labels_)
         if (l == gone) l = keep;
     remove_proxy(gone);
     evaluate();
-    return true;
 }
 
 Quadric Lloyd::plane_through(int face) const {

@@ -4,7 +4,9 @@
 
 #include "fitting/classify.h"
 #include "fitting/fit.h"
+#include "geometry/features.h"
 #include "geometry/model.h"
+#include "geometry/rng.h"
 #include "lloyd/flooding.h"
 
 #include <cstdint>
@@ -12,11 +14,35 @@
 
 namespace vqsa {
 
+// How proxies are seeded and inserted.
+enum class Initialization {
+    // Sharp creases cut the mesh into charts; seeds and insertions go first to the
+    // charts no proxy covers whose faces fit their proxies worse than the noise
+    // explains, and regions flood their own chart before crossing a crease.
+    features,
+    // The paper's: one seed per component, then farthest-point insertion.
+    paper,
+};
+
 struct LloydOptions {
-    int proxies = 0;            // stop at this many proxies (0: no count target)
+    // Stop at this many proxies. 0 with no tolerance: automatic, growing while proxies
+    // pay (every chart covered, every region explained by the noise, or no gain).
+    int proxies = 0;
     double tolerance = 0;       // stop when the RMS distance (relative to the longest bounding-box side) is below
     int max_iterations = 2000;  // Lloyd iterations in all
-    std::uint64_t seed = 1;     // picks the first seed face of each component
+    std::uint64_t seed = 1;     // drives the random choices: the seed face within a chart or component
+    Initialization init = Initialization::features;
+    FeatureOptions features;    // crease angle and normal filtering
+
+    // A region is explained when its mean squared error is at most noise_factor² times
+    // the mean squared roughness of its faces (Features::roughness), or below
+    // `precision` (RMS, relative to the longest bounding-box side), the automatic
+    // count's floor for free-form shapes.
+    double noise_factor = 2;
+    double precision = 1e-3;
+    // The automatic count also stops when an insertion lowered the energy by less than
+    // this fraction per added proxy.
+    double min_gain = 0.01;
 
     // Lloyd stops when the energy falls by less than this fraction, or after
     // `stage_iterations` iterations, before the next proxy operation.
@@ -29,8 +55,9 @@ struct LloydOptions {
     // if it lowers the energy, and the first that does not stops them.
     int teleports = 4;
     // A region whose quadric has two parts is split when the smaller part holds at
-    // least this fraction of its area.
-    double split_fraction = 0.05;
+    // least this fraction of its area (and three faces); smaller second parts are
+    // reported and refitted as the larger part's surface.
+    double split_fraction = 0.01;
     // Regions with fewer faces get a plane: a quadric through a handful of flat
     // triangles is underdetermined.
     int min_quadric_faces = 10;
@@ -46,7 +73,10 @@ void validate(const LloydOptions& options);
 enum class Operation { initialize, iterate, insert, split, merge, teleport };
 const char* operation_name(Operation operation);
 
-enum class StopReason { none, proxies, tolerance, max_iterations, cancelled, exhausted };
+// Why the Lloyd stage stopped: the proxy count or tolerance was reached; (automatic
+// count) every region is explained by the noise, or more proxies no longer pay; the
+// iteration cap; a cancel; every face has its own proxy.
+enum class StopReason { none, proxies, tolerance, fitted, no_gain, max_iterations, cancelled, exhausted };
 const char* stop_reason_name(StopReason reason);
 
 struct Proxy {
@@ -70,10 +100,12 @@ void refit_regions(const Model& model, const std::vector<int>& labels, const Llo
                    std::vector<Proxy>& proxies, const std::vector<char>& changed = {});
 
 // d(t, P) of every face against its region's proxy into `errors`; each proxy's error and
-// seed (its face of least error). Regions not flagged in `changed` (when given) keep
-// the errors already in `errors`. Returns the energy Σ d(t, P).
+// seed (its face of least error; with `chart`, of least error in the chart of its
+// previous seed if the region still reaches it). Regions not flagged in `changed` (when
+// given) keep the errors already in `errors`. Returns the energy Σ d(t, P).
 double evaluate_regions(const Model& model, const std::vector<int>& labels, std::vector<Proxy>& proxies,
-                        std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr);
+                        std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr,
+                        const std::vector<int>* chart = nullptr);
 
 std::vector<Quadric> quadrics_of(const std::vector<Proxy>& proxies);
 std::vector<int> seeds_of(const std::vector<Proxy>& proxies);
@@ -101,6 +133,7 @@ public:
     double rms() const;                         // relative to the longest bounding-box side
     // How far the stage is, in [0, 1] (by proxy count when there is a target).
     double fraction() const;
+    const Features& features() const { return features_; }
 
 private:
     struct Snapshot {
@@ -110,16 +143,39 @@ private:
         double energy = 0;
     };
 
+    // How a region's faces divide between the two parts of its quadric, if it has two.
+    struct Parts {
+        double area[2] = {0, 0};
+        int faces[2] = {0, 0};
+        int best[2] = {-1, -1};  // face of least error on each part
+    };
+
     void initialize();
     void iterate();
     void decide();
     void start_operation(Operation operation);
     void stop(StopReason reason);
     void evaluate(const std::vector<char>* changed = nullptr);
-    void insert_farthest(int count);  // into the `count` regions of largest error
+    bool automatic() const { return options_.proxies == 0 && options_.tolerance == 0; }
+    // Σ A (noise_factor · roughness)² over a region: the energy the noise explains.
+    double noise_energy(int proxy) const;
+    bool explained(int proxy) const;
+    // Charts without a seed whose faces fit worse than the noise explains, worst first.
+    std::vector<int> misfit_charts() const;
+    int insert_into_charts(int count);
+    // Into the `count` regions of largest error (only unexplained ones when automatic).
+    int insert_farthest(int count);
+    Parts parts(int proxy) const;
+    bool invalid(int proxy, Parts* parts = nullptr) const;
     bool split_invalid();
     // The adjacent pair whose union fit costs least; `gated`: only if merging pays.
     bool merge_cheapest(bool gated);
+    // Adjacent regions on one surface (their union fits as well as they do apart).
+    bool merge_same_surface();
+    // A region of a handful of faces that explains nothing, while another has errors the
+    // noise does not explain: merged away and reinserted there.
+    bool repair_stuck();
+    void merge_pair(int keep, int gone, const Fit& fit);
     Quadric plane_through(int face) const;
     void add_proxy(int seed);  // a plane through the seed face
     void remove_proxy(int index);
@@ -127,6 +183,10 @@ private:
 
     const Model& model_;
     LloydOptions options_;
+    Features features_;
+    std::vector<std::vector<int>> chart_faces_;
+    std::vector<double> face_noise_;  // A (noise_factor · roughness)² per face
+    SplitMix64 rng_;
     Flooding flooding_;
     FaceErrors face_errors_;
 
@@ -141,8 +201,13 @@ private:
     int iterations_ = 0;
     int teleports_left_ = 0;
     int splits_left_ = 0;
+    int repairs_left_ = 0;
     bool iterating_ = false;
     bool teleport_pending_ = false;
+    bool finishing_ = false;              // automatic count: no more insertions, merges only
+    double energy_before_insert_ = -1;    // automatic count: to judge the last insertion (-1: none)
+    int inserted_ = 0;
+    StopReason finish_reason_ = StopReason::none;
     Snapshot snapshot_;
     Operation last_operation_ = Operation::initialize;
     StopReason stop_reason_ = StopReason::none;

@@ -30,6 +30,16 @@ std::vector<OptionSpec> make_schema() {
                  "drives the random choices (seed faces); the same seed gives the same result",
                  [](Options& o, const json& v) { o.lloyd.seed = static_cast<std::uint64_t>(v.get<double>()); },
                  [](const Options& o) { return json(o.lloyd.seed); }});
+    s.push_back({"init", OptionKind::choice, 0, 0, {"features", "paper"},
+                 "seeding: 'features' (charts between sharp creases first) or 'paper' (one seed per component, farthest-point insertion)",
+                 [](Options& o, const json& v) {
+                     o.lloyd.init = v == "paper" ? Initialization::paper : Initialization::features;
+                 },
+                 [](const Options& o) { return json(o.lloyd.init == Initialization::paper ? "paper" : "features"); }});
+    s.push_back({"crease-angle", OptionKind::number, 0, 180, {},
+                 "dihedral angle, in degrees, above which an edge is a sharp crease (180: none)",
+                 [](Options& o, const json& v) { o.lloyd.features.crease_angle = v.get<double>(); },
+                 [](const Options& o) { return json(o.lloyd.features.crease_angle); }});
     s.push_back({"smooth", OptionKind::boolean, 0, 0, {}, "smooth the region boundaries by graph cut",
                  [](Options& o, const json& v) { o.smooth = v.get<bool>(); },
                  [](const Options& o) { return json(o.smooth); }});
@@ -189,8 +199,6 @@ json schema_to_json() {
 void validate(const Options& options) {
     // Values set on the struct directly pass the same checks as those set by name.
     for (const OptionSpec& spec : option_schema()) normalised(spec, spec.get(options));
-    if (options.lloyd.proxies == 0 && options.lloyd.tolerance == 0)
-        throw std::invalid_argument("give a proxy count, a tolerance, or both");
     validate(options.lloyd);
     if (!(options.max_projection_distance > 0)) throw std::invalid_argument("the projection distance guard must be positive");
 }

@@ -1,0 +1,234 @@
+#include "geometry/features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace vqsa {
+
+namespace {
+
+// +1 or -1 per face so that neighbours traverse their shared edge in opposite
+// directions (breadth first from each component's first face; where the mesh is not
+// orientable the first choice stays).
+std::vector<signed char> orientation(const Model& model) {
+    const DualGraph& g = model.graph;
+    const int n = model.face_count();
+    std::vector<signed char> sign(n, 0);
+    auto same_direction = [&](int f, int h) {
+        // The edge f and h share: same direction in both means they disagree.
+        const Triangle &a = model.triangles[f], &b = model.triangles[h];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (a[i] == b[j] && a[(i + 1) % 3] == b[(j + 1) % 3]) return true;
+        return false;
+    };
+    std::vector<int> queue;
+    for (int start = 0; start < n; ++start) {
+        if (sign[start]) continue;
+        sign[start] = 1;
+        queue.assign(1, start);
+        for (std::size_t q = 0; q < queue.size(); ++q) {
+            const int f = queue[q];
+            for (int e = g.begin(f); e < g.end(f); ++e) {
+                const int h = g.neighbor[e];
+                if (sign[h]) continue;
+                sign[h] = static_cast<signed char>(same_direction(f, h) ? -sign[f] : sign[f]);
+                queue.push_back(h);
+            }
+        }
+    }
+    return sign;
+}
+
+}  // namespace
+
+Features detect_features(const Model& model, const FeatureOptions& options) {
+    const DualGraph& g = model.graph;
+    const int n = model.face_count();
+    Features out;
+
+    const std::vector<signed char> sign = orientation(model);
+    std::vector<Vec3> normal(n);
+    for (int f = 0; f < n; ++f) {
+        const Triangle& t = model.triangles[f];
+        const Vec3 c = (model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]);
+        const double length = c.norm();
+        normal[f] = length > 0 ? Vec3(sign[f] * c / length) : Vec3::Zero();
+    }
+
+    // Noise turns the normals of faces not much larger than it at random: such faces
+    // make no creases. Its level: the median distance of a vertex from the mean of its
+    // neighbours, along the normal.
+    std::vector<Vec3> vertex_normal(model.points.size(), Vec3::Zero()), neighbours(model.points.size(), Vec3::Zero());
+    std::vector<int> neighbour_count(model.points.size(), 0);
+    for (int f = 0; f < n; ++f) {
+        const Triangle& t = model.triangles[f];
+        for (int i = 0; i < 3; ++i) {
+            vertex_normal[t[i]] += model.areas[f] * normal[f];
+            neighbours[t[i]] += model.points[t[(i + 1) % 3]] + model.points[t[(i + 2) % 3]];
+            neighbour_count[t[i]] += 2;
+        }
+    }
+    std::vector<double> deviations;
+    for (std::size_t v = 0; v < model.points.size(); ++v)
+        if (neighbour_count[v] > 0 && vertex_normal[v].norm() > 0)
+            deviations.push_back(std::abs((model.points[v] - neighbours[v] / neighbour_count[v]).dot(vertex_normal[v].normalized())));
+    double noise = 0;
+    if (!deviations.empty()) {
+        std::nth_element(deviations.begin(), deviations.begin() + deviations.size() / 2, deviations.end());
+        noise = deviations[deviations.size() / 2];
+    }
+    std::vector<char> reliable(n);
+    std::vector<double> range(n);  // the filter's normal difference of half weight, per face
+    for (int f = 0; f < n; ++f) {
+        const Triangle& t = model.triangles[f];
+        double longest = 0;
+        for (int i = 0; i < 3; ++i) longest = std::max(longest, (model.points[t[i]] - model.points[t[(i + 1) % 3]]).norm());
+        const double altitude = 2 * model.areas[f] / longest;  // the smallest
+        reliable[f] = altitude > 3 * noise;
+        // Noise σ tilts a face of altitude h by about 2σ/h: differences that large are noise.
+        range[f] = std::clamp(2 * noise / std::max(altitude, 1e-300), options.filter_range, 0.6);
+    }
+
+    // Bilateral filtering over edge neighbours: a neighbour counts by how close its normal
+    // is (half weight at the faces' range), so noise averages out while sharp edges, whose
+    // two sides barely see each other, stay. Not by area: a large face beside a thin
+    // strip (the side of a plate) would drag the strip's normal over the crease.
+    std::vector<Vec3> next(n);
+    for (int it = 0; it < options.filter_iterations; ++it) {
+        for (int f = 0; f < n; ++f) {
+            Vec3 sum = normal[f];
+            for (int e = g.begin(f); e < g.end(f); ++e) {
+                const int h = g.neighbor[e];
+                const double r = std::max(range[f], range[h]);
+                sum += std::exp(-std::log(2.0) * (normal[h] - normal[f]).squaredNorm() / (r * r)) * normal[h];
+            }
+            const double length = sum.norm();
+            next[f] = length > 0 ? Vec3(sum / length) : normal[f];
+        }
+        normal.swap(next);
+    }
+
+    const double cos_limit = std::cos(options.crease_angle * M_PI / 180);
+    out.crease.assign(g.neighbor.size(), 0);
+    for (int f = 0; f < n; ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            out.crease[e] = options.crease_angle < 180 && normal[f].dot(normal[h]) < cos_limit;
+        }
+
+    // Charts: reliable faces joined by edges that are not creases. Unreliable faces join
+    // no two faces (a chain of them along a crease would bridge it); afterwards each
+    // takes the chart of the nearest reliable face, breadth first.
+    out.chart.assign(n, -1);
+    std::vector<int> stack;
+    auto grow = [&](int f, bool through_unreliable) {
+        out.chart[f] = out.chart_count;
+        stack.assign(1, f);
+        while (!stack.empty()) {
+            const int h = stack.back();
+            stack.pop_back();
+            for (int e = g.begin(h); e < g.end(h); ++e) {
+                const int m = g.neighbor[e];
+                if (out.chart[m] >= 0 || out.crease[e] || (!through_unreliable && !reliable[m])) continue;
+                out.chart[m] = out.chart_count;
+                stack.push_back(m);
+            }
+        }
+        ++out.chart_count;
+    };
+    for (int f = 0; f < n; ++f)
+        if (out.chart[f] < 0 && reliable[f]) grow(f, false);
+    std::vector<int> queue;
+    for (int f = 0; f < n; ++f)
+        if (out.chart[f] >= 0) queue.push_back(f);
+    for (std::size_t q = 0; q < queue.size(); ++q)
+        for (int e = g.begin(queue[q]); e < g.end(queue[q]); ++e) {
+            const int m = g.neighbor[e];
+            if (out.chart[m] < 0) out.chart[m] = out.chart[queue[q]], queue.push_back(m);
+        }
+    for (int f = 0; f < n; ++f)
+        if (out.chart[f] < 0) grow(f, true);  // a component without a reliable face
+
+    // Roughness: how far each vertex lies, along its normal, from the mean of its
+    // neighbours (the umbrella) beyond what its neighbours do — a second difference, so
+    // that the smooth curvature of a clean surface cancels and noise remains. Scaled so
+    // that under noise it is the RMS distance a locally exact surface leaves (samples at
+    // vertices and barycentres). A vertex on a crease is measured once per chart, from
+    // that chart's faces only: the crease itself is no roughness.
+    const std::size_t vn = model.points.size();
+    std::vector<int> vertex_chart(vn, -1);  // the chart of a vertex's faces, or -2 for several
+    for (int f = 0; f < n; ++f)
+        for (int v : model.triangles[f])
+            vertex_chart[v] = vertex_chart[v] == -1 || vertex_chart[v] == out.chart[f] ? out.chart[f] : -2;
+    std::map<std::pair<int, int>, int> crease_slot;  // (vertex, chart) of crease vertices → slot
+    auto slot = [&](int v, int chart) {
+        if (vertex_chart[v] != -2) return v;
+        const auto [it, added] = crease_slot.try_emplace({v, chart}, static_cast<int>(vn + crease_slot.size()));
+        return it->second;
+    };
+    std::vector<Vec3> slot_normal(vn), slot_sum(vn);
+    std::vector<int> slot_count(vn, 0);
+    auto grow_to = [&](int k) {
+        if (k >= static_cast<int>(slot_count.size())) {
+            slot_normal.resize(k + 1, Vec3::Zero()), slot_sum.resize(k + 1, Vec3::Zero()), slot_count.resize(k + 1, 0);
+        }
+    };
+    for (Vec3& v : slot_normal) v.setZero();
+    for (Vec3& v : slot_sum) v.setZero();
+    for (int f = 0; f < n; ++f) {
+        const Triangle& t = model.triangles[f];
+        for (int i = 0; i < 3; ++i) {
+            const int k = slot(t[i], out.chart[f]);
+            grow_to(k);
+            slot_normal[k] += model.areas[f] * normal[f];
+            // Each edge seen from both ends, once per face: neighbours weighted by their faces.
+            slot_sum[k] += model.points[t[(i + 1) % 3]] + model.points[t[(i + 2) % 3]];
+            slot_count[k] += 2;
+        }
+    }
+    const std::size_t slots = slot_count.size();
+    std::vector<int> slot_vertex(slots);
+    for (std::size_t v = 0; v < vn; ++v) slot_vertex[v] = static_cast<int>(v);
+    for (const auto& [key, k] : crease_slot) slot_vertex[k] = key.first;
+    std::vector<double> d(slots, 0.0);  // the signed umbrella deviation
+    for (std::size_t k = 0; k < slots; ++k)
+        if (slot_count[k] > 0 && slot_normal[k].norm() > 0)
+            d[k] = (model.points[slot_vertex[k]] - slot_sum[k] / slot_count[k]).dot(slot_normal[k].normalized());
+    std::vector<double> neighbour_d(slots, 0.0);
+    for (int f = 0; f < n; ++f) {
+        const Triangle& t = model.triangles[f];
+        for (int i = 0; i < 3; ++i)
+            neighbour_d[slot(t[i], out.chart[f])] +=
+                d[slot(t[(i + 1) % 3], out.chart[f])] + d[slot(t[(i + 2) % 3], out.chart[f])];
+    }
+    // A chart's roughness is the median over its vertices (a bend inside a chart, a
+    // tangent edge between a cylinder and a chamfer, affects a line of vertices only).
+    // Under noise σ the second difference has a standard deviation of about 1.25 σ
+    // (median of its magnitude 0.674 of that), and a locally exact surface leaves an RMS
+    // of about 0.9 σ.
+    constexpr double kCalibration = 0.9 / (1.25 * 0.674);
+    std::vector<std::vector<double>> magnitudes(out.chart_count);
+    std::vector<char> seen(slots, 0);
+    for (int f = 0; f < n; ++f)
+        for (int v : model.triangles[f]) {
+            const int k = slot(v, out.chart[f]);
+            if (seen[k] || !slot_count[k]) continue;
+            seen[k] = 1;
+            magnitudes[out.chart[f]].push_back(std::abs(d[k] - neighbour_d[k] / slot_count[k]));
+        }
+    std::vector<double> chart_roughness(out.chart_count, 0.0);
+    for (int c = 0; c < out.chart_count; ++c) {
+        std::vector<double>& m = magnitudes[c];
+        if (m.empty()) continue;
+        std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
+        chart_roughness[c] = kCalibration * m[m.size() / 2];
+    }
+    out.roughness.resize(n);
+    for (int f = 0; f < n; ++f) out.roughness[f] = chart_roughness[out.chart[f]];
+    out.normals = std::move(normal);
+    return out;
+}
+
+}  // namespace vqsa

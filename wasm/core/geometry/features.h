@@ -1,0 +1,35 @@
+// Sharp creases, the charts they bound, and each face's roughness: what the Lloyd stage
+// seeds, floods and stops by (docs/METHOD.md §3).
+#pragma once
+
+#include "geometry/model.h"
+
+#include <vector>
+
+namespace vqsa {
+
+struct FeatureOptions {
+    // A dual edge is a crease when the (filtered) normals of its faces differ by more
+    // than this, in degrees; 180 finds none. Above the facet angle of most CAD
+    // tessellations of small holes (40–50° seen), below a right angle.
+    double crease_angle = 50;
+    // Bilateral filtering of the face normals (Zheng et al. 2011) before measuring
+    // angles, so that noise makes no creases and a coarsely tessellated cylinder makes
+    // few: iterations, and the normal difference that halves a neighbour's weight.
+    int filter_iterations = 8;
+    double filter_range = 0.35;
+};
+
+struct Features {
+    std::vector<Vec3> normals;    // per face: filtered, consistently oriented where the mesh allows
+    std::vector<char> crease;     // per dual-graph link (DualGraph::neighbor's indexing)
+    std::vector<int> chart;       // per face: its chart, the faces reachable without crossing a crease
+    int chart_count = 0;
+    // Per face: the RMS distance a locally exact surface would leave on it (the noise),
+    // estimated over its chart from second differences of vertex positions; unit frame.
+    std::vector<double> roughness;
+};
+
+Features detect_features(const Model& model, const FeatureOptions& options = {});
+
+}  // namespace vqsa
