@@ -59,9 +59,16 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
     options.lloyd.proxies = proxies;
     options.lloyd.seed = seed;
     options.project = false;
+    if (std::getenv("VQSA_NO_SMOOTH")) options.smooth = false;
     const auto t0 = std::chrono::steady_clock::now();
     vqsa::Pipeline pipeline(part.mesh, options);
-    pipeline.run();
+    std::string last;
+    pipeline.run([&](const vqsa::Progress& p) {
+        if (verbose && p.phase != last && std::string(p.phase) != "lloyd")
+            std::fprintf(stderr, "    %s %d proxies rms %.3e\n", p.phase, p.proxies, p.rms);
+        last = p.phase;
+        return true;
+    });
     const vqsa::Result r = pipeline.result();
     Outcome o;
     o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

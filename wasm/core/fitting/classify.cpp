@@ -212,7 +212,10 @@ Classification classify(const Quadric& f_unit, const Vec3& region_center, double
     R = frame;
     const Vec3 center = n * y0[a0];
     if (!has_constant) {
-        out.type = QuadricType::plane;  // a double plane
+        // A double plane: two parallel planes closer than the region's scale resolves
+        // (zero separation), the same plane twice or a thin plate's two faces. Callers
+        // judge by the faces.
+        out.type = QuadricType::parallel_planes;
         return finish(center);
     }
     if (k * lambda[a0] > 0) {

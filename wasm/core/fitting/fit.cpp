@@ -1,5 +1,7 @@
 #include "fitting/fit.h"
 
+#include "fitting/classify.h"
+
 #include <Eigen/Eigenvalues>
 
 namespace vqsa {
@@ -109,7 +111,13 @@ Fit fit_region(const Moments& region, const FitOptions& options) {
     const Fit plane = plane_local(local);
     const Fit quadric = taubin_local(local, options.regularization);
     const double negligible = options.negligible_distance * options.negligible_distance;
-    const bool prefer_plane = plane.mean_squared <= (1 + options.plane_tolerance) * quadric.mean_squared + negligible;
+    // A double plane (n·p − d)² always looks better than the plane: its first-order
+    // distance is half the true one, so under noise it wins the comparison. It is the
+    // plane, counted twice.
+    const Classification shape = classify(quadric.quadric, Vec3::Zero(), 1.0);
+    const bool double_plane = shape.type == QuadricType::parallel_planes && shape.semi_axes.z() == 0;
+    const bool prefer_plane = double_plane ||
+                              plane.mean_squared <= (1 + options.plane_tolerance) * quadric.mean_squared + negligible;
     const Fit& best = prefer_plane ? plane : quadric;
     return to_unit_frame(best.quadric, best.mean_squared, local);
 }

@@ -117,6 +117,37 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
             const int h = g.neighbor[e];
             out.crease[e] = options.crease_angle < 180 && normal[f].dot(normal[h]) < cos_limit;
         }
+    // Noise leaves spurious creases inside faces. A crease is confirmed only if the mean
+    // normals of the faces around each side (two rings, not crossing creases) still differ
+    // by the crease angle.
+    auto side_normal = [&](int f) {
+        Vec3 sum = normal[f];
+        std::vector<int> ring{f};
+        for (int depth = 0, begin = 0; depth < 2; ++depth) {
+            const int end = static_cast<int>(ring.size());
+            for (int i = begin; i < end; ++i)
+                for (int e = g.begin(ring[i]); e < g.end(ring[i]); ++e) {
+                    const int m = g.neighbor[e];
+                    if (out.crease[e] || std::find(ring.begin(), ring.end(), m) != ring.end()) continue;
+                    ring.push_back(m);
+                    sum += normal[m];
+                }
+            begin = end;
+        }
+        return Vec3(sum.normalized());
+    };
+    std::vector<char> confirmed(out.crease.size(), 0);
+    for (int f = 0; f < n; ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            if (out.crease[e] && f < g.neighbor[e]) confirmed[e] = side_normal(f).dot(side_normal(g.neighbor[e])) < cos_limit;
+    for (int f = 0; f < n; ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            if (!out.crease[e] || f < h) continue;
+            for (int k = g.begin(h); k < g.end(h); ++k)
+                if (g.neighbor[k] == f) confirmed[e] = confirmed[k];
+        }
+    out.crease.swap(confirmed);
 
     // Charts: reliable faces joined by edges that are not creases. Unreliable faces join
     // no two faces (a chain of them along a crease would bridge it); afterwards each
@@ -218,13 +249,18 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
             seen[k] = 1;
             magnitudes[out.chart[f]].push_back(std::abs(d[k] - neighbour_d[k] / slot_count[k]));
         }
-    std::vector<double> chart_roughness(out.chart_count, 0.0);
-    for (int c = 0; c < out.chart_count; ++c) {
-        std::vector<double>& m = magnitudes[c];
-        if (m.empty()) continue;
+    // Charts too small for a median of their own take the whole mesh's.
+    auto median = [](std::vector<double> m) {
+        if (m.empty()) return 0.0;
         std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
-        chart_roughness[c] = kCalibration * m[m.size() / 2];
-    }
+        return m[m.size() / 2];
+    };
+    std::vector<double> all;
+    for (const std::vector<double>& m : magnitudes) all.insert(all.end(), m.begin(), m.end());
+    const double overall = kCalibration * median(std::move(all));
+    std::vector<double> chart_roughness(out.chart_count, overall);
+    for (int c = 0; c < out.chart_count; ++c)
+        if (magnitudes[c].size() >= 30) chart_roughness[c] = kCalibration * median(std::move(magnitudes[c]));
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) out.roughness[f] = chart_roughness[out.chart[f]];
     out.normals = std::move(normal);

@@ -3,8 +3,11 @@
 #include "geometry/rng.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 #include <stdexcept>
 #include <string>
 
@@ -43,7 +46,7 @@ void validate(const LloydOptions& o) {
     if (!(o.convergence >= 0 && o.convergence < 1)) fail("convergence must be in [0, 1)");
     if (o.teleports < 0) fail("teleports must be non-negative");
     if (!(o.split_fraction > 0 && o.split_fraction < 0.5)) fail("split fraction must be in (0, 0.5)");
-    if (!(o.noise_factor > 0) || !(o.precision >= 0) || !(o.min_gain >= 0)) fail("noise factor, precision or gain out of range");
+    if (!(o.noise_factor > 0) || !(o.chart_factor > 0) || !(o.precision >= 0) || !(o.min_gain >= 0)) fail("noise factor, precision or gain out of range");
 }
 
 Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options) {
@@ -79,13 +82,21 @@ void refit_regions(const Model& model, const std::vector<int>& labels, const Llo
 double evaluate_regions(const Model& model, const std::vector<int>& labels, std::vector<Proxy>& proxies,
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed,
                         const std::vector<int>* chart) {
-    // With charts, a seed stays in the chart of the previous one while its region still
-    // reaches it: a region does not wander into a neighbouring chart because, under
-    // noise, its face of least error happens to lie there.
+    // With charts, a seed lies in the chart holding most of its region's area: a region
+    // does not wander into a neighbouring chart because, under noise, its face of least
+    // error happens to lie there, and the chart it belongs to floods from it first.
     std::vector<int> anchor(proxies.size(), -1);
-    if (chart)
-        for (std::size_t i = 0; i < proxies.size(); ++i)
-            if (proxies[i].seed >= 0) anchor[i] = (*chart)[proxies[i].seed];
+    if (chart) {
+        std::unordered_map<std::uint64_t, double> area;  // (region, chart) → area
+        for (int f = 0; f < model.face_count(); ++f)
+            area[std::uint64_t(labels[f]) << 32 | std::uint32_t((*chart)[f])] += model.areas[f];
+        std::vector<double> largest(proxies.size(), -1);
+        for (const auto& [key, a] : area) {
+            const int region = static_cast<int>(key >> 32), c = static_cast<int>(key & 0xffffffffu);
+            // Ties go to the lower chart, whatever the hash order.
+            if (a > largest[region] || (a == largest[region] && c < anchor[region])) largest[region] = a, anchor[region] = c;
+        }
+    }
     std::vector<double> best(proxies.size(), std::numeric_limits<double>::infinity());
     std::vector<char> anchored(proxies.size(), 0);  // the current seed lies in the anchor chart
     for (Proxy& p : proxies) p.error = 0, p.seed = -1;
@@ -132,9 +143,20 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     features_ = detect_features(model_, features);
     chart_faces_.resize(features_.chart_count);
     for (int f = 0; f < model_.face_count(); ++f) chart_faces_[features_.chart[f]].push_back(f);
+    // Each chart's error under its own fit, what a proxy of its own would leave.
+    chart_error_.assign(features_.chart_count, 0.0);
+    FaceErrors own;
+    for (int c = 0; c < features_.chart_count; ++c) {
+        if (static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
+        Moments sum{};
+        for (int f : chart_faces_[c]) add_to(sum, model_.moments[f]);
+        if (!(sum[0] > 0)) continue;
+        own.reset(model_, {fit_proxy(sum, static_cast<int>(chart_faces_[c].size()), options_).quadric});
+        for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
+    }
     face_noise_.resize(model_.face_count());
     for (int f = 0; f < model_.face_count(); ++f) {
-        const double r = options_.noise_factor * features_.roughness[f];
+        const double r = features_.roughness[f];
         face_noise_[f] = model_.areas[f] * r * r;
     }
     initialize();
@@ -240,6 +262,8 @@ void Lloyd::iterate() {
 void Lloyd::evaluate(const std::vector<char>* changed) {
     energy_ = evaluate_regions(model_, labels_, proxies_, errors_, face_errors_, changed,
                                options_.init == Initialization::features ? &features_.chart : nullptr);
+    region_noise_.assign(proxies_.size(), 0.0);
+    for (int f = 0; f < model_.face_count(); ++f) region_noise_[labels_[f]] += face_noise_[f];
 }
 
 void Lloyd::start_operation(Operation operation) {
@@ -281,6 +305,14 @@ void Lloyd::decide() {
         return start_operation(Operation::teleport);
     }
     if (target > 0 && count == target) {
+        // A chart left to a neighbour's proxy while two proxies share one surface: the
+        // second goes to the chart.
+        if (repairs_left_ > 0 && options_.init == Initialization::features && !misfit_charts().empty() &&
+            merge_same_surface()) {
+            --repairs_left_;
+            insert_into_charts(1);
+            return start_operation(Operation::teleport);
+        }
         if (teleports_left_ > 0) {
             snapshot_ = {labels_, errors_, proxies_, energy_};
             if (merge_cheapest(true)) {
@@ -317,15 +349,18 @@ void Lloyd::decide() {
     int added = options_.init == Initialization::features ? insert_into_charts(batch) : 0;
     added += insert_farthest(batch - added);
     inserted_ = added;
+    if (std::getenv("VQSA_DEBUG")) {
+        std::fprintf(stderr, "decide: count %d added %d energy %g\n", count, added, energy_);
+        for (int i = 0; i < count; ++i)
+            std::fprintf(stderr, "  %d faces %d error %g noise %g floor %g explained %d\n", i, proxies_[i].faces, proxies_[i].error,
+                         noise_energy(i), proxies_[i].area * options_.precision * options_.precision, int(explained(i)));
+    }
     if (added == 0) return stop(automatic() ? StopReason::fitted : StopReason::exhausted);
     start_operation(Operation::insert);
 }
 
 double Lloyd::noise_energy(int proxy) const {
-    double sum = 0;
-    for (int f = 0; f < model_.face_count(); ++f)
-        if (labels_[f] == proxy) sum += face_noise_[f];
-    return sum;
+    return options_.noise_factor * options_.noise_factor * region_noise_[proxy];
 }
 
 bool Lloyd::explained(int proxy) const {
@@ -338,13 +373,35 @@ std::vector<int> Lloyd::misfit_charts() const {
     std::vector<char> seeded(features_.chart_count, 0);
     for (const Proxy& p : proxies_)
         if (p.seed >= 0) seeded[features_.chart[p.seed]] = 1;
+    // Across the creases around a chart, within one region: how far that region's quadric
+    // turns. A surface that turns through a crease (by half its angle and more, within an
+    // edge) is fitting two faces, however small its error.
+    const DualGraph& g = model_.graph;
+    const double cos_half = std::cos(0.5 * options_.features.crease_angle * M_PI / 180);
+    std::vector<int> crossings(features_.chart_count, 0), bends(features_.chart_count, 0);
+    for (int f = 0; f < model_.face_count(); ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            if (!features_.crease[e] || labels_[f] != labels_[h]) continue;
+            const Quadric& q = proxies_[labels_[f]].quadric;
+            const Vec3 a = q.gradient(model_.barycentres[f]), b = q.gradient(model_.barycentres[h]);
+            ++crossings[features_.chart[f]];
+            if (std::abs(a.dot(b)) < cos_half * a.norm() * b.norm()) ++bends[features_.chart[f]];
+        }
     std::vector<std::pair<double, int>> excess;  // (excess error, chart)
     for (int c = 0; c < features_.chart_count; ++c) {
-        if (seeded[c]) continue;
-        double error = 0, noise = 0, area = 0;  // area: a floor for rounding
-        for (int f : chart_faces_[c]) error += errors_[f], noise += face_noise_[f], area += model_.areas[f];
-        // Charts are the part's structure: no precision floor, only the noise excuses a misfit.
-        if (error > noise + 1e-12 * area) excess.emplace_back(error - noise, c);
+        // A chart of a handful of faces is as likely noise as structure: farthest-point
+        // insertion finds it if it matters.
+        if (seeded[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
+        double error = 0, area = 0;  // area: a floor for rounding
+        for (int f : chart_faces_[c]) error += errors_[f], area += model_.areas[f];
+        // Charts are the part's structure: a chart whose own fit explains it much better
+        // than the region that took it is a face of its own (under noise the comparison
+        // with its own fit, not with the noise level, tells: a quadric bent over a
+        // crease stays within a couple of σ).
+        const double own = options_.chart_factor * chart_error_[c];
+        const bool bent = crossings[c] > 0 && 2 * bends[c] >= crossings[c];
+        if (error > own + 1e-12 * area || bent) excess.emplace_back(std::max(error - own, 0.0) + (bent ? error : 0.0), c);
     }
     std::sort(excess.begin(), excess.end(), [](const auto& a, const auto& b) {
         return a.first != b.first ? a.first > b.first : a.second < b.second;
@@ -366,12 +423,15 @@ int Lloyd::insert_into_charts(int count) {
 }
 
 int Lloyd::insert_farthest(int count) {
-    // The regions of largest total error, and in each the face of largest error.
+    // The regions whose error the noise explains least (of largest total error, on a
+    // clean mesh), and in each the face of largest error.
     std::vector<int> order(proxies_.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-        return proxies_[a].error != proxies_[b].error ? proxies_[a].error > proxies_[b].error : a < b;
-    });
+    std::vector<double> excess(proxies_.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        order[i] = static_cast<int>(i);
+        excess[i] = proxies_[i].error - noise_energy(static_cast<int>(i));
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return excess[a] != excess[b] ? excess[a] > excess[b] : a < b; });
     int added = 0;
     for (int region : order) {
         if (added == count) break;
@@ -397,16 +457,27 @@ int Lloyd::insert_farthest(int count) {
 
 Lloyd::Parts Lloyd::parts(int proxy) const {
     Parts out;
-    Classification c = classify_proxy(proxy);
-    // A double plane from a non-planar quadric is the limit of two parallel planes: its
-    // faces may still lie on both sides (a thin plate), so it is judged as a pair.
-    if (c.type == QuadricType::plane && !proxies_[proxy].quadric.is_plane()) c.type = QuadricType::parallel_planes;
+    const Classification c = classify_proxy(proxy);
+    if (proxies_[proxy].quadric.is_plane()) {
+        // A plane region whose faces face both ways is a sheet seen from both sides: the
+        // two faces of a plate thinner than the fit can resolve.
+        const Vec3 n = proxies_[proxy].quadric.b().normalized();
+        const double cos_limit = std::cos(options_.features.crease_angle * M_PI / 180);
+        for (int f = 0; f < model_.face_count(); ++f) {
+            if (labels_[f] != proxy) continue;
+            const double side = features_.normals[f].dot(n);
+            if (std::abs(side) < cos_limit) continue;
+            const int k = side > 0 ? 0 : 1;
+            out.area[k] += model_.areas[f];
+            ++out.faces[k];
+            if (out.best[k] < 0 || errors_[f] < errors_[out.best[k]]) out.best[k] = f;
+        }
+        return out;
+    }
     if (!has_two_parts(c.type)) return out;
     // Faces closer to the parts' separation than the noise are on neither.
-    double noise = 0;
-    for (int f = 0; f < model_.face_count(); ++f)
-        if (labels_[f] == proxy) noise += face_noise_[f];
-    const double margin = std::sqrt(noise / std::max(proxies_[proxy].area, 1e-300)) + 1e-9;
+    const double noise = region_noise_[proxy];
+    const double margin = options_.chart_factor * std::sqrt(noise / std::max(proxies_[proxy].area, 1e-300)) + 1e-9;
     for (int f = 0; f < model_.face_count(); ++f) {
         if (labels_[f] != proxy) continue;
         const Vec3 y = c.rotation.transpose() * (model_.barycentres[f] - c.center);
@@ -473,7 +544,7 @@ bool Lloyd::merge_cheapest(bool gated) {
         if (cost >= best_cost) continue;
         const RegionFrame region = region_frame(united);
         const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (has_two_parts(type) || (type == QuadricType::plane && !fit.quadric.is_plane())) continue;
+        if (has_two_parts(type)) continue;
         best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
     }
     if (best_pair < 0) return false;
@@ -482,33 +553,56 @@ bool Lloyd::merge_cheapest(bool gated) {
 }
 
 bool Lloyd::merge_same_surface() {
-    // Two regions lie on one surface when the union's fit explains it as well as the
-    // two fits explain their parts, up to the noise: the union costs no more than the
-    // parts' own fit errors plus a quarter, or than the noise of its faces.
+    // Two regions lie on one surface when the union's fit explains each of them about as
+    // well as its own fit does (within a quarter), or within the noise of its faces. Each
+    // part is judged alone, so that a small region's misfit does not hide in a large
+    // region's noise.
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
-    std::vector<double> noise(proxies_.size(), 0);
-    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += face_noise_[f];
-    double best_cost = std::numeric_limits<double>::infinity();
-    int best_pair = -1;
-    Fit best_fit;
+    const int count = static_cast<int>(proxies_.size());
+    const double k2 = options_.noise_factor * options_.noise_factor;
+    std::vector<double> noise(count, 0);
+    std::vector<std::vector<int>> faces(count);
+    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += k2 * face_noise_[f], faces[labels_[f]].push_back(f);
+    struct Candidate {
+        double cost;
+        int pair;
+        Fit fit;
+    };
+    std::vector<Candidate> candidates;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         const Proxy &a = proxies_[i], &b = proxies_[j];
         Moments united = a.moments;
         add_to(united, b.moments);
         const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
-        const double parts = a.area * a.fit_error + b.area * b.fit_error;
-        const double united_error = united[0] * fit.mean_squared;
+        const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = united[0] * fit.mean_squared;
+        if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "pair %d %d united %g parts %g noise %g\n", i, j, united_error, parts, noise[i] + noise[j]);
         if (!(united_error <= 1.25 * parts + 1e-12 * united[0] || united_error <= noise[i] + noise[j])) continue;
         const RegionFrame region = region_frame(united);
         const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (has_two_parts(type) || (type == QuadricType::plane && !fit.quadric.is_plane())) continue;
-        const double cost = united_error - parts;
-        if (cost < best_cost) best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
+        if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "  type %s\n", type_name(type));
+        if (has_two_parts(type)) continue;
+        candidates.push_back({united_error - parts, static_cast<int>(k), fit});
     }
-    if (best_pair < 0) return false;
-    merge_pair(pairs[best_pair].first, pairs[best_pair].second, best_fit);
-    return true;
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+        return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
+    });
+    FaceErrors evaluator;
+    for (const Candidate& c : candidates) {
+        const auto [i, j] = pairs[c.pair];
+        evaluator.reset(model_, {c.fit.quadric});
+        bool explains = true;
+        for (int r : {i, j}) {
+            double error = 0;
+            for (int f : faces[r]) error += evaluator(f, 0);
+            explains = explains && (error <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error <= noise[r]);
+        }
+        if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "  verify %d %d: %d\n", i, j, int(explains));
+        if (!explains) continue;
+        merge_pair(i, j, c.fit);
+        return true;
+    }
+    return false;
 }
 
 bool Lloyd::repair_stuck() {
@@ -519,7 +613,8 @@ bool Lloyd::repair_stuck() {
     double worst_excess = 0;
     const int handful = std::max(4, model_.face_count() / 1000);
     std::vector<double> noise(count, 0);
-    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += face_noise_[f];
+    const double k2 = options_.noise_factor * options_.noise_factor;
+    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += k2 * face_noise_[f];
     for (int i = 0; i < count; ++i) {
         const Proxy& p = proxies_[i];
         const double floor = p.area * options_.precision * options_.precision;
@@ -582,10 +677,12 @@ void Lloyd::add_proxy(int seed) {
     p.quadric = plane_through(seed);
     p.seed = seed;
     proxies_.push_back(p);
+    region_noise_.push_back(0);
 }
 
 void Lloyd::remove_proxy(int index) {
     proxies_.erase(proxies_.begin() + index);
+    region_noise_.erase(region_noise_.begin() + index);
     for (int& l : labels_)
         if (l > index) --l;
 }

@@ -35,10 +35,13 @@ struct LloydOptions {
     FeatureOptions features;    // crease angle and normal filtering
 
     // A region is explained when its mean squared error is at most noise_factor² times
-    // the mean squared roughness of its faces (Features::roughness), or below
-    // `precision` (RMS, relative to the longest bounding-box side), the automatic
-    // count's floor for free-form shapes.
-    double noise_factor = 2;
+    // the mean squared roughness of its faces (Features::roughness: the RMS a locally
+    // exact surface leaves), or below `precision` (RMS, relative to the longest
+    // bounding-box side), the automatic count's floor for free-form shapes. A chart is
+    // structure its region misses when its error exceeds chart_factor times its error under
+    // its own fit.
+    double noise_factor = 1.4;
+    double chart_factor = 2;
     double precision = 1e-3;
     // The automatic count also stops when an insertion lowered the energy by less than
     // this fraction per added proxy.
@@ -57,7 +60,7 @@ struct LloydOptions {
     // A region whose quadric has two parts is split when the smaller part holds at
     // least this fraction of its area (and three faces); smaller second parts are
     // reported and refitted as the larger part's surface.
-    double split_fraction = 0.01;
+    double split_fraction = 0.001;
     // Regions with fewer faces get a plane: a quadric through a handful of flat
     // triangles is underdetermined.
     int min_quadric_faces = 10;
@@ -185,7 +188,9 @@ private:
     LloydOptions options_;
     Features features_;
     std::vector<std::vector<int>> chart_faces_;
-    std::vector<double> face_noise_;  // A (noise_factor · roughness)² per face
+    std::vector<double> chart_error_;  // under the chart's own fit
+    std::vector<double> face_noise_;    // A roughness² per face
+    std::vector<double> region_noise_;  // its sum per region, from evaluate()
     SplitMix64 rng_;
     Flooding flooding_;
     FaceErrors face_errors_;
