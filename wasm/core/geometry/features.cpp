@@ -91,6 +91,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         range[f] = std::clamp(2 * noise / std::max(altitude, 1e-300), options.filter_range, 0.6);
     }
 
+    const std::vector<Vec3> raw = normal;
     // Bilateral filtering over edge neighbours: a neighbour counts by how close its normal
     // is (half weight at the faces' range), so noise averages out while sharp edges, whose
     // two sides barely see each other, stay. Not by area: a large face beside a thin
@@ -261,8 +262,22 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     std::vector<double> chart_roughness(out.chart_count, overall);
     for (int c = 0; c < out.chart_count; ++c)
         if (magnitudes[c].size() >= 30) chart_roughness[c] = kCalibration * median(std::move(magnitudes[c]));
+    // A clean tessellation has roughness too: its flat facets stand off the smooth
+    // surface by the sagitta of the arc across them, about altitude × dihedral / 8 over
+    // the edges that are no crease (the largest of a face's); a fit leaves an RMS of
+    // up to half of that, the vertices lying on the surface. Per face: a curved face
+    // beside a flat one in a chart (a fillet) keeps its own.
+    constexpr double kSagittaRms = 0.5;
     out.roughness.resize(n);
-    for (int f = 0; f < n; ++f) out.roughness[f] = chart_roughness[out.chart[f]];
+    for (int f = 0; f < n; ++f) {
+        double sagitta = 0;
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            if (out.crease[e] || !(g.edge_length[e] > 0)) continue;
+            const double cosine = std::clamp(raw[f].dot(raw[g.neighbor[e]]), -1.0, 1.0);
+            sagitta = std::max(sagitta, 2 * model.areas[f] / g.edge_length[e] * std::acos(cosine) / 8);
+        }
+        out.roughness[f] = std::hypot(chart_roughness[out.chart[f]], kSagittaRms * sagitta);
+    }
     out.normals = std::move(normal);
     return out;
 }

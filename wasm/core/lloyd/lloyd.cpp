@@ -370,9 +370,17 @@ bool Lloyd::explained(int proxy) const {
 
 std::vector<int> Lloyd::misfit_charts() const {
     if (options_.init != Initialization::features) return {};
+    // A chart is owned by a proxy seeded in it whose region holds at least half of it.
+    std::vector<double> chart_area(features_.chart_count, 0), owned_area(features_.chart_count, 0);
+    std::vector<int> seeded_by(proxies_.size(), -1);
+    for (std::size_t i = 0; i < proxies_.size(); ++i)
+        if (proxies_[i].seed >= 0) seeded_by[i] = features_.chart[proxies_[i].seed];
+    for (int f = 0; f < model_.face_count(); ++f) {
+        chart_area[features_.chart[f]] += model_.areas[f];
+        if (seeded_by[labels_[f]] == features_.chart[f]) owned_area[features_.chart[f]] += model_.areas[f];
+    }
     std::vector<char> seeded(features_.chart_count, 0);
-    for (const Proxy& p : proxies_)
-        if (p.seed >= 0) seeded[features_.chart[p.seed]] = 1;
+    for (int c = 0; c < features_.chart_count; ++c) seeded[c] = 2 * owned_area[c] >= chart_area[c];
     // Across the creases around a chart, within one region: how far that region's quadric
     // turns. A surface that turns through a crease (by half its angle and more, within an
     // edge) is fitting two faces, however small its error.
@@ -415,8 +423,13 @@ int Lloyd::insert_into_charts(int count) {
     int added = 0;
     for (int c : misfit_charts()) {
         if (added == count) break;
+        // A random face of the chart that seeds no proxy yet (two seeds on one face would
+        // leave one proxy without a region).
         const std::vector<int>& faces = chart_faces_[c];
-        add_proxy(faces[rng_.below(faces.size())]);
+        std::size_t k = rng_.below(faces.size());
+        for (std::size_t tries = 0; tries < faces.size() && is_seed(faces[k]); ++tries) k = (k + 1) % faces.size();
+        if (is_seed(faces[k])) continue;
+        add_proxy(faces[k]);
         ++added;
     }
     return added;
@@ -544,7 +557,7 @@ bool Lloyd::merge_cheapest(bool gated) {
         if (cost >= best_cost) continue;
         const RegionFrame region = region_frame(united);
         const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (has_two_parts(type)) continue;
+        if (has_two_parts(type) || faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second)) continue;
         best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
     }
     if (best_pair < 0) return false;
@@ -576,11 +589,9 @@ bool Lloyd::merge_same_surface() {
         add_to(united, b.moments);
         const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
         const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = united[0] * fit.mean_squared;
-        if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "pair %d %d united %g parts %g noise %g\n", i, j, united_error, parts, noise[i] + noise[j]);
         if (!(united_error <= 1.25 * parts + 1e-12 * united[0] || united_error <= noise[i] + noise[j])) continue;
         const RegionFrame region = region_frame(united);
         const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "  type %s\n", type_name(type));
         if (has_two_parts(type)) continue;
         candidates.push_back({united_error - parts, static_cast<int>(k), fit});
     }
@@ -595,14 +606,48 @@ bool Lloyd::merge_same_surface() {
         for (int r : {i, j}) {
             double error = 0;
             for (int f : faces[r]) error += evaluator(f, 0);
-            explains = explains && (error <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error <= noise[r]);
+            // Within the tolerance a chart gets against its own fit (chart_factor).
+            const double tolerance = options_.chart_factor * options_.chart_factor * region_noise_[r];
+            explains = explains && (error <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error <= tolerance);
         }
-        if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "  verify %d %d: %d\n", i, j, int(explains));
-        if (!explains) continue;
+        if (!explains || bends_through_creases(c.fit.quadric, i, j) || faces_both_ways(c.fit.quadric, i, j)) continue;
         merge_pair(i, j, c.fit);
         return true;
     }
     return false;
+}
+
+bool Lloyd::faces_both_ways(const Quadric& q, int a, int b) const {
+    // The mean of each region's face normals along q's gradient: +1 or -1 when the region
+    // faces one way. A plate's two faces fit one plane, facing away from each other.
+    double facing[2] = {0, 0}, area[2] = {0, 0};
+    for (int f = 0; f < model_.face_count(); ++f) {
+        const int k = labels_[f] == a ? 0 : labels_[f] == b ? 1 : -1;
+        if (k < 0) continue;
+        const Vec3 n = q.gradient(model_.barycentres[f]);
+        if (!(n.norm() > 0)) continue;
+        facing[k] += model_.areas[f] * features_.normals[f].dot(n.normalized());
+        area[k] += model_.areas[f];
+    }
+    if (!(area[0] > 0 && area[1] > 0)) return false;
+    return facing[0] * facing[1] < -0.25 * area[0] * area[1];
+}
+
+bool Lloyd::bends_through_creases(const Quadric& q, int a, int b) const {
+    const DualGraph& g = model_.graph;
+    const double cos_half = std::cos(0.5 * options_.features.crease_angle * M_PI / 180);
+    int crossings = 0, bends = 0;
+    for (int f = 0; f < model_.face_count(); ++f) {
+        if (labels_[f] != a) continue;
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            if (!features_.crease[e] || labels_[h] != b) continue;
+            const Vec3 x = q.gradient(model_.barycentres[f]), y = q.gradient(model_.barycentres[h]);
+            ++crossings;
+            if (std::abs(x.dot(y)) < cos_half * x.norm() * y.norm()) ++bends;
+        }
+    }
+    return crossings > 0 && 2 * bends >= crossings;
 }
 
 bool Lloyd::repair_stuck() {
@@ -670,6 +715,12 @@ Quadric Lloyd::plane_through(int face) const {
     const Vec3 normal =
         (model_.points[t[1]] - model_.points[t[0]]).cross(model_.points[t[2]] - model_.points[t[0]]).normalized();
     return normalized(Quadric::plane(normal, model_.barycentres[face]));
+}
+
+bool Lloyd::is_seed(int face) const {
+    for (const Proxy& p : proxies_)
+        if (p.seed == face) return true;
+    return false;
 }
 
 void Lloyd::add_proxy(int seed) {

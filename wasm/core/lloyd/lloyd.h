@@ -175,12 +175,18 @@ private:
     bool merge_cheapest(bool gated);
     // Adjacent regions on one surface (their union fits as well as they do apart).
     bool merge_same_surface();
+    // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
+    bool faces_both_ways(const Quadric& q, int a, int b) const;
+    // Whether q, fitted to regions a and b, turns through the creases between them (by
+    // half the crease angle or more, on half of them): it would be fitting two faces.
+    bool bends_through_creases(const Quadric& q, int a, int b) const;
     // A region of a handful of faces that explains nothing, while another has errors the
     // noise does not explain: merged away and reinserted there.
     bool repair_stuck();
     void merge_pair(int keep, int gone, const Fit& fit);
     Quadric plane_through(int face) const;
     void add_proxy(int seed);  // a plane through the seed face
+    bool is_seed(int face) const;
     void remove_proxy(int index);
     Classification classify_proxy(int proxy) const;
 
