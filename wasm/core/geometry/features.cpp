@@ -265,9 +265,9 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // A clean tessellation has roughness too: its flat facets stand off the smooth
     // surface by the sagitta of the arc across them, about altitude × dihedral / 8 over
     // the edges that are no crease (the largest of a face's); a fit leaves an RMS of
-    // up to half of that, the vertices lying on the surface. Per face: a curved face
+    // up to 0.7 of that, the vertices lying on the surface. Per face: a curved face
     // beside a flat one in a chart (a fillet) keeps its own.
-    constexpr double kSagittaRms = 0.5;
+    constexpr double kSagittaRms = 0.7;
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
         double sagitta = 0;

@@ -275,7 +275,9 @@ void Lloyd::start_operation(Operation operation) {
 }
 
 void Lloyd::decide() {
-    if (teleport_pending_) {
+    // A teleport (one proxy more where the error is, then the cheapest merge) is judged
+    // once the count is back at the target.
+    if (teleport_pending_ && static_cast<int>(proxies_.size()) == options_.proxies) {
         teleport_pending_ = false;
         if (!(energy_ < snapshot_.energy * (1 - options_.convergence))) {
             // The teleport did not pay: go back, and stop trying (the same move would be chosen again).
@@ -283,6 +285,7 @@ void Lloyd::decide() {
             errors_ = snapshot_.errors;
             proxies_ = snapshot_.proxies;
             energy_ = snapshot_.energy;
+            evaluate();
             teleports_left_ = 0;
         }
     }
@@ -315,8 +318,7 @@ void Lloyd::decide() {
         }
         if (teleports_left_ > 0) {
             snapshot_ = {labels_, errors_, proxies_, energy_};
-            if (merge_cheapest(true)) {
-                insert_farthest(1);
+            if (insert_farthest(1) == 1) {
                 --teleports_left_;
                 teleport_pending_ = true;
                 return start_operation(Operation::teleport);
@@ -436,15 +438,23 @@ int Lloyd::insert_into_charts(int count) {
 }
 
 int Lloyd::insert_farthest(int count) {
-    // The regions whose error the noise explains least (of largest total error, on a
-    // clean mesh), and in each the face of largest error.
+    // The regions whose error the noise explains least: first those it does not explain,
+    // by the error left over (by total error, on a clean mesh), then by how far their
+    // error is from the noise's (a spare proxy goes to the edge of a plate thinner than
+    // the noise, not into the middle of a face), and in each the face of largest error.
     std::vector<int> order(proxies_.size());
-    std::vector<double> excess(proxies_.size());
+    std::vector<double> excess(proxies_.size()), ratio(proxies_.size());
     for (std::size_t i = 0; i < order.size(); ++i) {
         order[i] = static_cast<int>(i);
-        excess[i] = proxies_[i].error - noise_energy(static_cast<int>(i));
+        const double noise = noise_energy(static_cast<int>(i));
+        excess[i] = proxies_[i].error - noise;
+        ratio[i] = proxies_[i].error / (noise + 1e-300);
     }
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return excess[a] != excess[b] ? excess[a] > excess[b] : a < b; });
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        if ((excess[a] > 0) != (excess[b] > 0)) return excess[a] > 0;
+        if (excess[a] > 0) return excess[a] != excess[b] ? excess[a] > excess[b] : a < b;
+        return ratio[a] != ratio[b] ? ratio[a] > ratio[b] : a < b;
+    });
     int added = 0;
     for (int region : order) {
         if (added == count) break;
@@ -608,6 +618,7 @@ bool Lloyd::merge_same_surface() {
             for (int f : faces[r]) error += evaluator(f, 0);
             // Within the tolerance a chart gets against its own fit (chart_factor).
             const double tolerance = options_.chart_factor * options_.chart_factor * region_noise_[r];
+            if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "verify %d %d part %d: error %g own %g tolerance %g\n", i, j, r, error, proxies_[r].error, tolerance);
             explains = explains && (error <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error <= tolerance);
         }
         if (!explains || bends_through_creases(c.fit.quadric, i, j) || faces_both_ways(c.fit.quadric, i, j)) continue;

@@ -56,7 +56,7 @@ struct LloydOptions {
     double insertion_batch = 0.25;
     // Merge-and-reinsert attempts once the proxy count is reached: each is kept only
     // if it lowers the energy, and the first that does not stops them.
-    int teleports = 4;
+    int teleports = 8;
     // A region whose quadric has two parts is split when the smaller part holds at
     // least this fraction of its area (and three faces); smaller second parts are
     // reported and refitted as the larger part's surface.
