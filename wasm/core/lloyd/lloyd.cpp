@@ -343,6 +343,14 @@ void Lloyd::decide() {
         }
     }
     if (count >= model_.face_count()) return stop(StopReason::exhausted);
+    // Below a target count, a mesh whose every region the noise explains, with every
+    // chart covered, has no surface left to find: more proxies would split surfaces
+    // (the free-form floor `precision` does not count here).
+    if (target > 0 && options_.init == Initialization::features && misfit_charts().empty()) {
+        bool all_noise = true;
+        for (int i = 0; i < count && all_noise; ++i) all_noise = proxies_[i].error <= noise_energy(i) && region_noise_[i] > 0;
+        if (all_noise) return stop(StopReason::fitted);
+    }
     // Far from the target, several proxies go in at once (into distinct regions): Lloyd
     // then runs once per batch rather than once per proxy.
     int batch = std::max(1, static_cast<int>(count * options_.insertion_batch));
@@ -403,13 +411,14 @@ std::vector<int> Lloyd::misfit_charts() const {
         // A chart of a handful of faces is as likely noise as structure: farthest-point
         // insertion finds it if it matters.
         if (seeded[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
-        double error = 0, area = 0;  // area: a floor for rounding
-        for (int f : chart_faces_[c]) error += errors_[f], area += model_.areas[f];
+        double error = 0, area = 0, noise = 0;  // area: a floor for rounding
+        for (int f : chart_faces_[c]) error += errors_[f], area += model_.areas[f], noise += face_noise_[f];
         // Charts are the part's structure: a chart whose own fit explains it much better
         // than the region that took it is a face of its own (under noise the comparison
         // with its own fit, not with the noise level, tells: a quadric bent over a
         // crease stays within a couple of σ).
-        const double own = options_.chart_factor * chart_error_[c];
+        // No fit does better than the noise (a small chart's own fit follows it).
+        const double own = options_.chart_factor * std::max(chart_error_[c], noise);
         const bool bent = crossings[c] > 0 && 2 * bends[c] >= crossings[c];
         if (error > own + 1e-12 * area || bent) excess.emplace_back(std::max(error - own, 0.0) + (bent ? error : 0.0), c);
     }
