@@ -70,12 +70,22 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
             neighbour_count[t[i]] += 2;
         }
     }
+    // Only over vertices whose faces turn by less than the crease angle: on a coarse CAD
+    // tessellation most vertices sit on edges, and their deviation is no noise.
+    const double smooth_cos = std::cos(options.crease_angle * M_PI / 180);
+    std::vector<Vec3> lowest(model.points.size(), Vec3::Zero());  // a face normal per vertex, to compare with
+    std::vector<char> smooth(model.points.size(), 1);
+    for (int f = 0; f < n; ++f)
+        for (int v : model.triangles[f]) {
+            if (lowest[v].squaredNorm() == 0) lowest[v] = normal[f];
+            else if (normal[f].dot(lowest[v]) < smooth_cos) smooth[v] = 0;
+        }
     std::vector<double> deviations;
     for (std::size_t v = 0; v < model.points.size(); ++v)
-        if (neighbour_count[v] > 0 && vertex_normal[v].norm() > 0)
+        if (smooth[v] && neighbour_count[v] > 0 && vertex_normal[v].norm() > 0)
             deviations.push_back(std::abs((model.points[v] - neighbours[v] / neighbour_count[v]).dot(vertex_normal[v].normalized())));
     double noise = 0;
-    if (!deviations.empty()) {
+    if (deviations.size() * 10 >= model.points.size()) {  // else: too few smooth vertices to tell noise
         std::nth_element(deviations.begin(), deviations.begin() + deviations.size() / 2, deviations.end());
         noise = deviations[deviations.size() / 2];
     }
@@ -264,17 +274,27 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         if (magnitudes[c].size() >= 30) chart_roughness[c] = kCalibration * median(std::move(magnitudes[c]));
     // A clean tessellation has roughness too: its flat facets stand off the smooth
     // surface by the sagitta of the arc across them, about altitude × dihedral / 8 over
-    // the edges that are no crease (the largest of a face's); a fit leaves an RMS of
+    // the edges bent by less than half the crease angle (the largest of a face's; more is
+    // a bend, a chamfer's edge, not a chord of a smooth surface); a fit leaves an RMS of
     // up to 0.7 of that, the vertices lying on the surface. Per face: a curved face
     // beside a flat one in a chart (a fillet) keeps its own.
     constexpr double kSagittaRms = 0.7;
+    const double smooth_limit = 0.5 * options.crease_angle * M_PI / 180;
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
+        // Across the face's narrowest width: a sliver's length is no chord.
+        double longest = 0;
+        for (int i = 0; i < 3; ++i) {
+            const Triangle& t = model.triangles[f];
+            longest = std::max(longest, (model.points[t[i]] - model.points[t[(i + 1) % 3]]).norm());
+        }
+        const double width = longest > 0 ? 2 * model.areas[f] / longest : 0;
         double sagitta = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             if (out.crease[e] || !(g.edge_length[e] > 0)) continue;
-            const double cosine = std::clamp(raw[f].dot(raw[g.neighbor[e]]), -1.0, 1.0);
-            sagitta = std::max(sagitta, 2 * model.areas[f] / g.edge_length[e] * std::acos(cosine) / 8);
+            const double angle = std::acos(std::clamp(raw[f].dot(raw[g.neighbor[e]]), -1.0, 1.0));
+            if (angle > smooth_limit) continue;  // a bend (a chamfer's edge), not a chord
+            sagitta = std::max(sagitta, width * angle / 8);
         }
         out.roughness[f] = std::hypot(chart_roughness[out.chart[f]], kSagittaRms * sagitta);
     }

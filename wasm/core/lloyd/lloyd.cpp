@@ -328,9 +328,12 @@ void Lloyd::decide() {
     }
     if (automatic()) {
         // The last insertion is judged by what it bought: too little, and growing stops.
-        if (energy_before_insert_ >= 0 && !finishing_ && misfit_charts().empty() &&
-            !(energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_)))
-            finishing_ = true, finish_reason_ = StopReason::no_gain;
+        // Three insertions in a row that do not pay end the growth (one alone may need
+        // more Lloyd iterations than its stage gave it).
+        if (energy_before_insert_ >= 0 && !finishing_ && misfit_charts().empty()) {
+            if (energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_)) unpaid_ = 0;
+            else if (++unpaid_ >= 3) finishing_ = true, finish_reason_ = StopReason::no_gain;
+        }
         if (!finishing_) {
             bool all_explained = misfit_charts().empty();
             for (int i = 0; i < count && all_explained; ++i) all_explained = explained(i);
@@ -447,22 +450,16 @@ int Lloyd::insert_into_charts(int count) {
 }
 
 int Lloyd::insert_farthest(int count) {
-    // The regions whose error the noise explains least: first those it does not explain,
-    // by the error left over (by total error, on a clean mesh), then by how far their
-    // error is from the noise's (a spare proxy goes to the edge of a plate thinner than
-    // the noise, not into the middle of a face), and in each the face of largest error.
+    // The regions whose error the noise explains least, by the error left over (by total
+    // error, on a clean mesh), and in each the face of largest error.
     std::vector<int> order(proxies_.size());
-    std::vector<double> excess(proxies_.size()), ratio(proxies_.size());
+    std::vector<double> excess(proxies_.size());
     for (std::size_t i = 0; i < order.size(); ++i) {
         order[i] = static_cast<int>(i);
-        const double noise = noise_energy(static_cast<int>(i));
-        excess[i] = proxies_[i].error - noise;
-        ratio[i] = proxies_[i].error / (noise + 1e-300);
+        excess[i] = proxies_[i].error - noise_energy(static_cast<int>(i));
     }
     std::sort(order.begin(), order.end(), [&](int a, int b) {
-        if ((excess[a] > 0) != (excess[b] > 0)) return excess[a] > 0;
-        if (excess[a] > 0) return excess[a] != excess[b] ? excess[a] > excess[b] : a < b;
-        return ratio[a] != ratio[b] ? ratio[a] > ratio[b] : a < b;
+        return excess[a] != excess[b] ? excess[a] > excess[b] : a < b;
     });
     int added = 0;
     for (int region : order) {

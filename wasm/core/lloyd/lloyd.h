@@ -137,6 +137,7 @@ public:
     // How far the stage is, in [0, 1] (by proxy count when there is a target).
     double fraction() const;
     const Features& features() const { return features_; }
+    const LloydOptions& options() const { return options_; }
 
 private:
     struct Snapshot {
@@ -218,6 +219,7 @@ private:
     bool finishing_ = false;              // automatic count: no more insertions, merges only
     double energy_before_insert_ = -1;    // automatic count: to judge the last insertion (-1: none)
     int inserted_ = 0;
+    int unpaid_ = 0;  // insertions in a row that did not pay
     StopReason finish_reason_ = StopReason::none;
     Snapshot snapshot_;
     Operation last_operation_ = Operation::initialize;

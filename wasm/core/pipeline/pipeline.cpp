@@ -55,6 +55,7 @@ public:
         state_.labels = state_.lloyd_labels = lloyd_.labels();
         state_.proxies = lloyd_.proxies();
         state_.energy = lloyd_.energy();
+        if (lloyd_.options().init == Initialization::features) state_.crease = lloyd_.features().crease;
         return false;
     }
 
@@ -78,12 +79,23 @@ public:
         state_.phase = "smooth";
         if (!smoother_)
             smoother_ = std::make_unique<BoundarySmoother>(model_, quadrics_of(state_.proxies), state_.labels,
-                                                           seeds_of(state_.proxies), options_.smoothing);
+                                                           seeds_of(state_.proxies), options_.smoothing,
+                                                           state_.crease.empty() ? nullptr : &state_.crease);
         if (smoother_->step()) return true;
+        // Straighter boundaries are worth a little distance, not a worse fit: when the
+        // regions refitted to their new faces lie farther from them by more than a tenth,
+        // the Lloyd boundaries stay.
+        const std::vector<Proxy> before = state_.proxies;
         refit_regions(model_, state_.labels, options_.lloyd, state_.proxies);
         FaceErrors evaluator;
         std::vector<double> errors;
-        state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
+        const double energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
+        if (energy <= 1.1 * state_.energy + 1e-300) {
+            state_.energy = energy;
+        } else {
+            state_.labels = state_.lloyd_labels;
+            state_.proxies = before;
+        }
         return false;
     }
 

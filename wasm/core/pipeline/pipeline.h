@@ -59,6 +59,7 @@ public:
         std::vector<int> labels, lloyd_labels;
         std::vector<Proxy> proxies;
         std::vector<std::optional<Classification>> shapes;  // special fits, unit frame
+        std::vector<char> crease;  // per dual-graph link, when the Lloyd stage used features
         double energy = 0;
         StopReason stop_reason = StopReason::none;
         int iterations = 0;

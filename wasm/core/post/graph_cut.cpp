@@ -34,8 +34,9 @@ void add_arc(FlowGraph& g, int from, int to, double capacity, double reverse_cap
 }  // namespace
 
 BoundarySmoother::BoundarySmoother(const Model& model, std::vector<Quadric> proxies, std::vector<int>& labels,
-                                   const std::vector<int>& anchors, const SmoothingOptions& options)
-    : model_(model), labels_(labels), options_(options) {
+                                   const std::vector<int>& anchors, const SmoothingOptions& options,
+                                   const std::vector<char>* crease)
+    : model_(model), labels_(labels), options_(options), crease_(crease) {
     double total = 0;
     for (double l : model.graph.edge_length) total += l;
     mean_edge_length_ = model.graph.edge_length.empty() ? 1.0 : total / model.graph.edge_length.size();
@@ -117,7 +118,8 @@ void BoundarySmoother::smooth(int a, int b) {
         for (int e = g.begin(f); e < g.end(f); ++e) {
             const int j = node_[g.neighbor[e]];
             if (j <= i) continue;  // each dual edge once, and only between nodes
-            const double length = g.edge_length[e];
+            // A boundary along a sharp crease costs nothing: that is where faces meet.
+            const double length = crease_ && (*crease_)[e] ? 0.0 : g.edge_length[e];
             const double w = options_.lambda * length / (length + mean_edge_length_);
             add_arc(graph, i, j, w, w);
         }
@@ -125,10 +127,22 @@ void BoundarySmoother::smooth(int a, int b) {
     boost::boykov_kolmogorov_max_flow(graph, source, sink);
 
     // The source's tree (black) is what stays reachable from it: label a.
+    // The cut trades distance for boundary length in ratios; it is kept only if the band's
+    // distance to its proxies grows by at most a half (two proxies that both fit a face
+    // almost exactly make every ratio a coin toss).
     auto color = boost::get(boost::vertex_color, graph);
+    double before = 0, after = 0;
     for (int i = 0; i < count; ++i) {
         const int f = faces[i];
-        if (ring_[f] > 0) labels_[f] = color[i] == boost::black_color ? a : b;
+        if (ring_[f] == 0) continue;
+        const int label = color[i] == boost::black_color ? a : b;
+        before += errors_(f, labels_[f]);
+        after += errors_(f, label);
+    }
+    const bool keep = after <= 1.5 * before + 1e-300;
+    for (int i = 0; i < count; ++i) {
+        const int f = faces[i];
+        if (ring_[f] > 0 && keep) labels_[f] = color[i] == boost::black_color ? a : b;
         ring_[f] = 0;
         node_[f] = -1;
     }

@@ -21,9 +21,11 @@ struct SmoothingOptions {
 // can show the boundaries moving.
 class BoundarySmoother {
 public:
-    // `anchors`: faces that keep their label (one per region, so no region vanishes).
+    // `anchors`: faces that keep their label (one per region, so no region vanishes);
+    // `crease` (per dual-graph link, optional): sharp edges, along which a boundary is free.
     BoundarySmoother(const Model& model, std::vector<Quadric> proxies, std::vector<int>& labels,
-                     const std::vector<int>& anchors, const SmoothingOptions& options);
+                     const std::vector<int>& anchors, const SmoothingOptions& options,
+                     const std::vector<char>* crease = nullptr);
 
     // Smooths the next pair; false once every pair is done (then regions are made
     // connected again: stray pieces go to the neighbour they share most edges with).
@@ -38,6 +40,7 @@ private:
     const Model& model_;
     std::vector<int>& labels_;
     SmoothingOptions options_;
+    const std::vector<char>* crease_;
     FaceErrors errors_;
     double mean_edge_length_ = 0;
     std::vector<std::pair<int, int>> pairs_;
