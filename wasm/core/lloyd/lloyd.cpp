@@ -335,7 +335,7 @@ void Lloyd::decide() {
             else if (++unpaid_ >= 3) finishing_ = true, finish_reason_ = StopReason::no_gain;
         }
         if (!finishing_) {
-            bool all_explained = misfit_charts().empty();
+            bool all_explained = misfit_charts().empty() && misfit_clusters().empty();
             for (int i = 0; i < count && all_explained; ++i) all_explained = explained(i);
             if (all_explained) finishing_ = true, finish_reason_ = StopReason::fitted;
         }
@@ -349,7 +349,7 @@ void Lloyd::decide() {
     // Below a target count, a mesh whose every region the noise explains, with every
     // chart covered, has no surface left to find: more proxies would split surfaces
     // (the free-form floor `precision` does not count here).
-    if (target > 0 && options_.init == Initialization::features && misfit_charts().empty()) {
+    if (target > 0 && options_.init == Initialization::features && misfit_charts().empty() && misfit_clusters().empty()) {
         bool all_noise = true;
         for (int i = 0; i < count && all_noise; ++i) all_noise = proxies_[i].error <= noise_energy(i) && region_noise_[i] > 0;
         if (all_noise) return stop(StopReason::fitted);
@@ -360,6 +360,7 @@ void Lloyd::decide() {
     if (target > 0) batch = std::min(batch, target - count);
     energy_before_insert_ = energy_;
     int added = options_.init == Initialization::features ? insert_into_charts(batch) : 0;
+    if (added < batch && options_.init == Initialization::features) added += insert_into_clusters(batch - added);
     added += insert_farthest(batch - added);
     inserted_ = added;
     if (std::getenv("VQSA_DEBUG")) {
@@ -440,6 +441,51 @@ int Lloyd::insert_into_charts(int count) {
         // A random face of the chart that seeds no proxy yet (two seeds on one face would
         // leave one proxy without a region).
         const std::vector<int>& faces = chart_faces_[c];
+        std::size_t k = rng_.below(faces.size());
+        for (std::size_t tries = 0; tries < faces.size() && is_seed(faces[k]); ++tries) k = (k + 1) % faces.size();
+        if (is_seed(faces[k])) continue;
+        add_proxy(faces[k]);
+        ++added;
+    }
+    return added;
+}
+
+std::vector<std::vector<int>> Lloyd::misfit_clusters() const {
+    if (options_.init != Initialization::features) return {};
+    // Faces whose (filtered) normal is off their region's surface normal by more than the
+    // crease angle lie on another surface, whatever the distances say (the sides of a
+    // plate thinner than the noise).
+    const double cos_limit = std::cos(options_.features.crease_angle * M_PI / 180);
+    const int n = model_.face_count();
+    std::vector<char> off(n, 0);
+    for (int f = 0; f < n; ++f) {
+        const Vec3 g = proxies_[labels_[f]].quadric.gradient(model_.barycentres[f]);
+        off[f] = g.norm() > 0 && std::abs(features_.normals[f].dot(g)) < cos_limit * g.norm();
+    }
+    std::vector<std::vector<int>> clusters;
+    std::vector<char> seen(n, 0);
+    const DualGraph& g = model_.graph;
+    for (int f = 0; f < n; ++f) {
+        if (!off[f] || seen[f]) continue;
+        std::vector<int> cluster{f};
+        seen[f] = 1;
+        for (std::size_t k = 0; k < cluster.size(); ++k)
+            for (int e = g.begin(cluster[k]); e < g.end(cluster[k]); ++e) {
+                const int h = g.neighbor[e];
+                if (off[h] && !seen[h] && labels_[h] == labels_[f]) seen[h] = 1, cluster.push_back(h);
+            }
+        if (static_cast<int>(cluster.size()) >= options_.min_quadric_faces) clusters.push_back(std::move(cluster));
+    }
+    std::sort(clusters.begin(), clusters.end(), [](const auto& a, const auto& b) {
+        return a.size() != b.size() ? a.size() > b.size() : a[0] < b[0];
+    });
+    return clusters;
+}
+
+int Lloyd::insert_into_clusters(int count) {
+    int added = 0;
+    for (const std::vector<int>& faces : misfit_clusters()) {
+        if (added == count) break;
         std::size_t k = rng_.below(faces.size());
         for (std::size_t tries = 0; tries < faces.size() && is_seed(faces[k]); ++tries) k = (k + 1) % faces.size();
         if (is_seed(faces[k])) continue;
@@ -627,7 +673,9 @@ bool Lloyd::merge_same_surface() {
             if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "verify %d %d part %d: error %g own %g tolerance %g\n", i, j, r, error, proxies_[r].error, tolerance);
             explains = explains && (error <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error <= tolerance);
         }
-        if (!explains || bends_through_creases(c.fit.quadric, i, j) || faces_both_ways(c.fit.quadric, i, j)) continue;
+        if (!explains || bends_through_creases(c.fit.quadric, i, j) || faces_both_ways(c.fit.quadric, i, j) ||
+            strays(c.fit.quadric, i) || strays(c.fit.quadric, j))
+            continue;
         merge_pair(i, j, c.fit);
         return true;
     }
@@ -648,6 +696,18 @@ bool Lloyd::faces_both_ways(const Quadric& q, int a, int b) const {
     }
     if (!(area[0] > 0 && area[1] > 0)) return false;
     return facing[0] * facing[1] < -0.25 * area[0] * area[1];
+}
+
+bool Lloyd::strays(const Quadric& q, int region) const {
+    const double cos_limit = std::cos(options_.features.crease_angle * M_PI / 180);
+    double off = 0, area = 0;
+    for (int f = 0; f < model_.face_count(); ++f) {
+        if (labels_[f] != region) continue;
+        const Vec3 g = q.gradient(model_.barycentres[f]);
+        area += model_.areas[f];
+        if (g.norm() > 0 && std::abs(features_.normals[f].dot(g)) < cos_limit * g.norm()) off += model_.areas[f];
+    }
+    return 2 * off > area;
 }
 
 bool Lloyd::bends_through_creases(const Quadric& q, int a, int b) const {

@@ -167,6 +167,10 @@ private:
     // Charts without a seed whose faces fit worse than the noise explains, worst first.
     std::vector<int> misfit_charts() const;
     int insert_into_charts(int count);
+    // Connected faces (a handful or more) whose normals stray from their region's surface
+    // normal by more than the crease angle, largest first.
+    std::vector<std::vector<int>> misfit_clusters() const;
+    int insert_into_clusters(int count);
     // Into the `count` regions of largest error (only unexplained ones when automatic).
     int insert_farthest(int count);
     Parts parts(int proxy) const;
@@ -178,6 +182,8 @@ private:
     bool merge_same_surface();
     // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
     bool faces_both_ways(const Quadric& q, int a, int b) const;
+    // Whether most of a region's faces have normals off q's by more than the crease angle.
+    bool strays(const Quadric& q, int region) const;
     // Whether q, fitted to regions a and b, turns through the creases between them (by
     // half the crease angle or more, on half of them): it would be fitting two faces.
     bool bends_through_creases(const Quadric& q, int a, int b) const;
