@@ -45,7 +45,7 @@ struct LloydOptions {
     double precision = 1e-3;
     // The automatic count also stops when an insertion lowered the energy by less than
     // this fraction per added proxy.
-    double min_gain = 0.01;
+    double min_gain = 0.05;
 
     // Lloyd stops when the energy falls by less than this fraction, or after
     // `stage_iterations` iterations, before the next proxy operation.
