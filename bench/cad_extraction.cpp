@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -25,6 +26,10 @@ std::set<std::string> list(const std::string& text) {
     for (std::string item; std::getline(in, item, ',');) out.insert(item);
     return out;
 }
+
+// True type × found type over the regions matched to a true face, at the true count.
+std::map<std::string, std::map<std::string, int>> confusion;
+std::map<std::string, std::pair<int, int>> typed, typed_all;  // variant → (right, all): clean matches, all matches
 
 struct Outcome {
     int proxies = 0;
@@ -54,7 +59,8 @@ int two_part_regions(const vqsa::Part& part, const vqsa::Result& r) {
 std::string dump_dir;  // --dump: a GLB of every run, for bench/render.mjs
 bool verbose = false;
 
-Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::string& name) {
+Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::string& name,
+            const std::string& variant = "") {
     vqsa::Options options;
     options.lloyd.proxies = proxies;
     options.lloyd.seed = seed;
@@ -76,6 +82,24 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
     o.accuracy = vqsa::score_partition(part, r.face_labels, o.proxies).accuracy;
     o.two_part = two_part_regions(part, r);
     o.stop = vqsa::stop_reason_name(r.stop_reason);
+    if (!variant.empty()) {
+        const vqsa::PartitionScore score = vqsa::score_partition(part, r.face_labels, o.proxies);
+        for (const vqsa::ProxyResult& p : r.proxies) {
+            const int face = score.face_of[p.id];
+            if (face < 0) continue;
+            const std::string truth = vqsa::type_name(part.surfaces[face].type), found = vqsa::type_name(p.type);
+            auto& [right_all, all_all] = typed_all[variant];
+            right_all += truth == found, ++all_all;
+            if (!score.clean_match[p.id]) continue;
+            ++confusion[truth][found];
+            if (truth != found && verbose)
+                std::fprintf(stderr, "  %s: region %d (%d faces) is %s rms %.3e, runner-up %s rms %.3e\n", variant.c_str(), p.id,
+                             p.faces, found.c_str(), p.type_rms, p.runner_up ? vqsa::type_name(p.runner_up->type) : "-",
+                             p.runner_up ? p.runner_up->rms : 0.0);
+            auto& [right, all] = typed[variant];
+            right += truth == found, ++all;
+        }
+    }
     if (!dump_dir.empty()) std::ofstream(dump_dir + "/" + name + ".glb", std::ios::binary) << vqsa::export_glb(part.mesh, r);
     if (verbose) {
         const vqsa::PartitionScore score = vqsa::score_partition(part, r.face_labels, o.proxies);
@@ -120,7 +144,7 @@ int main(int argc, char** argv) {
         const vqsa::Part part = vqsa::make_part(c.part, options);
         const int faces = static_cast<int>(part.surfaces.size());
         const std::string name = c.part + "_" + c.variant;
-        const Outcome truth = run(part, faces, c.options.seed, name + "_true");
+        const Outcome truth = run(part, faces, c.options.seed, name + "_true", c.variant);
         const Outcome automatic = run(part, 0, c.options.seed, name + "_auto");
         std::printf("| %s | %s | %d | %zu | %.4f | %d | %.4f | %d | %.2f |\n", c.part.c_str(), c.variant.c_str(), faces,
                     part.mesh.triangles.size(), truth.accuracy, automatic.proxies, automatic.accuracy,
@@ -137,6 +161,26 @@ int main(int argc, char** argv) {
     if (cases)
         std::printf("\nmean accuracy %.4f (true count), %.4f (auto); lowest %.4f, %.4f\n", sum_true / cases,
                     sum_auto / cases, min_true, min_auto);
+    std::printf("\nTypes of the regions matched to a true face (sharing 90 %% of the area of each), at the true count (rows: true type, columns: found):\n\n");
+    std::set<std::string> found_types;
+    for (const auto& [truth, row] : confusion)
+        for (const auto& [found, n] : row) found_types.insert(found);
+    std::printf("| true \\ found |");
+    for (const std::string& t : found_types) std::printf(" %s |", t.c_str());
+    std::printf("\n|---|");
+    for (std::size_t i = 0; i < found_types.size(); ++i) std::printf("---:|");
+    std::printf("\n");
+    for (const auto& [truth, row] : confusion) {
+        std::printf("| %s |", truth.c_str());
+        for (const std::string& t : found_types) std::printf(" %d |", row.count(t) ? row.at(t) : 0);
+        std::printf("\n");
+    }
+    std::printf("\n");
+    for (const auto& [variant, counts] : typed)
+        std::printf("typed right (%s): %d of %d (%.1f %%) of the clean matches, %d of %d (%.1f %%) of all matches\n",
+                    variant.c_str(), counts.first, counts.second, 100.0 * counts.first / std::max(1, counts.second),
+                    typed_all[variant].first, typed_all[variant].second,
+                    100.0 * typed_all[variant].first / std::max(1, typed_all[variant].second));
     if (!json_path.empty()) std::ofstream(json_path) << rows.dump(1) << "\n";
     return 0;
 }

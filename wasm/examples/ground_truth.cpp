@@ -77,8 +77,16 @@ PartitionScore score_partition(const Part& part, const std::vector<int>& labels,
     PartitionScore score;
     score.face_of = best_assignment(overlap);
     double matched = 0;
+    std::vector<double> region_area(regions, 0), face_area(faces, 0);
     for (int r = 0; r < regions; ++r)
-        if (score.face_of[r] >= 0) matched += overlap[r][score.face_of[r]];
+        for (int f = 0; f < faces; ++f) region_area[r] += overlap[r][f], face_area[f] += overlap[r][f];
+    score.clean_match.assign(regions, 0);
+    for (int r = 0; r < regions; ++r) {
+        const int f = score.face_of[r];
+        if (f < 0) continue;
+        matched += overlap[r][f];
+        score.clean_match[r] = overlap[r][f] >= 0.9 * region_area[r] && overlap[r][f] >= 0.9 * face_area[f];
+    }
     score.accuracy = total > 0 ? matched / total : 0;
     return score;
 }

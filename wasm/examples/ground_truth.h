@@ -12,6 +12,9 @@ namespace vqsa {
 struct PartitionScore {
     double accuracy = 0;       // matched area / total area
     std::vector<int> face_of;  // per region: its matched true face, or -1
+    // Per region: it and its matched face share at least 90 % of the area of each (the
+    // patches whose type and parameters are judged).
+    std::vector<char> clean_match;
 };
 
 // The corpus the CAD-extraction tests and benchmarks score: every part, clean, with

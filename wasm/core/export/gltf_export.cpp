@@ -139,16 +139,22 @@ nlohmann::json metadata(BufferWriter& writer, const std::vector<nlohmann::json>&
         {"center", f64("VEC3")},     {"axis", f64("VEC3")},      {"rotation", f64("MAT3")},
         {"semi_axes", f64("VEC3")},  {"radius", f64("SCALAR")},  {"half_angle", f64("SCALAR")},
         {"area", f64("SCALAR")},     {"rms_error", f64("SCALAR")},
-        {"faces", {{"type", "SCALAR"}, {"componentType", "UINT32"}}}};
+        {"faces", {{"type", "SCALAR"}, {"componentType", "UINT32"}}},
+        {"type_rms", {{"type", "SCALAR"}, {"componentType", "FLOAT64"}, {"description", "RMS distance of the region's vertices to its surface"}}},
+        {"runner_up", {{"type", "STRING"}, {"description", "the best other type (empty when types were not selected)"}}},
+        {"runner_up_rms", {{"type", "SCALAR"}, {"componentType", "FLOAT64"}, {"description", "its RMS distance (0 when none)"}}}};
 
-    std::string names;
-    std::vector<std::uint32_t> offsets{0}, faces;
-    std::vector<double> coefficients, center, axis, rotation, semi_axes, radius, half_angle, area, rms;
+    std::vector<std::string> types, runners_up;
+    std::vector<std::uint32_t> faces;
+    std::vector<double> coefficients, center, axis, rotation, semi_axes, radius, half_angle, area, rms, type_rms, runner_up_rms;
     for (std::size_t i = 0; i < regions.size(); ++i) {
         const nlohmann::json& r = regions[i];
         const Classification& c = shapes[i];
-        names += r["type"].get<std::string>();
-        offsets.push_back(static_cast<std::uint32_t>(names.size()));
+        types.push_back(r["type"].get<std::string>());
+        type_rms.push_back(r["type_rms"]);
+        const bool runner = r["runner_up"].is_object();
+        runners_up.push_back(runner ? r["runner_up"]["type"].get<std::string>() : "");
+        runner_up_rms.push_back(runner ? r["runner_up"]["rms"].get<double>() : 0.0);
         for (double v : r["coefficients"]) coefficients.push_back(v);
         for (int k = 0; k < 3; ++k) {
             center.push_back(c.center[k]);
@@ -163,9 +169,19 @@ nlohmann::json metadata(BufferWriter& writer, const std::vector<nlohmann::json>&
         rms.push_back(r["rms_error"]);
         faces.push_back(r["faces"]);
     }
-    const std::vector<char> name_bytes(names.begin(), names.end());
+    auto strings = [&](const std::vector<std::string>& values) {
+        std::string bytes;
+        std::vector<std::uint32_t> offsets{0};
+        for (const std::string& v : values) bytes += v, offsets.push_back(static_cast<std::uint32_t>(bytes.size()));
+        return nlohmann::json{{"values", writer.view(std::vector<char>(bytes.begin(), bytes.end()))},
+                              {"stringOffsets", writer.view(offsets)},
+                              {"stringOffsetType", "UINT32"}};
+    };
     nlohmann::json columns = {
-        {"type", {{"values", writer.view(name_bytes)}, {"stringOffsets", writer.view(offsets)}, {"stringOffsetType", "UINT32"}}},
+        {"type", strings(types)},
+        {"runner_up", strings(runners_up)},
+        {"type_rms", {{"values", writer.view(type_rms)}}},
+        {"runner_up_rms", {{"values", writer.view(runner_up_rms)}}},
         {"coefficients", {{"values", writer.view(coefficients)}}},
         {"center", {{"values", writer.view(center)}}},
         {"axis", {{"values", writer.view(axis)}}},

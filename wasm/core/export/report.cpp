@@ -20,6 +20,21 @@ nlohmann::json params_report(const Classification& c) {
         case QuadricType::hyperbolic_paraboloid:
         case QuadricType::parabolic_cylinder:
             return {{"vertex", vec(c.center)}, {"rotation", rotation}, {"semi_axes", vec(c.semi_axes)}};
+        case QuadricType::intersecting_planes: {
+            // Both planes, through the common line.
+            const Vec3 e0 = c.rotation.col(0), e1 = c.rotation.col(1);
+            const Vec3 n1 = (e0 / c.semi_axes[0] - e1 / c.semi_axes[1]).normalized();
+            const Vec3 n2 = (e0 / c.semi_axes[0] + e1 / c.semi_axes[1]).normalized();
+            return {{"line_point", vec(c.center)},
+                    {"line_direction", vec(c.axis())},
+                    {"planes", {{{"point", vec(c.center)}, {"normal", vec(n1)}}, {{"point", vec(c.center)}, {"normal", vec(n2)}}}}};
+        }
+        case QuadricType::parallel_planes: {
+            const Vec3 n = c.axis(), offset = c.semi_axes[2] * n;
+            return {{"planes", {{{"point", vec(c.center + offset)}, {"normal", vec(n)}},
+                                {{"point", vec(c.center - offset)}, {"normal", vec(n)}}}}};
+        }
+        case QuadricType::empty: return nlohmann::json::object();  // no real points: no parameters
         default: return {{"center", vec(c.center)}, {"rotation", rotation}, {"semi_axes", vec(c.semi_axes)}};
     }
 }
@@ -35,6 +50,9 @@ nlohmann::json proxy_report(const Result& result, int i) {
                           {"faces", p.faces},
                           {"area", p.area},
                           {"rms_error", p.rms_error},
+                          {"type_rms", p.type_rms},
+                          {"runner_up", p.runner_up ? nlohmann::json{{"type", type_name(p.runner_up->type)}, {"rms", p.runner_up->rms}}
+                                                    : nlohmann::json()},
                           {"params", params_report(p.shape)}};
     if (const auto& m = result.metrics)
         out["metrics"] = {{"rms", m->region_rms.at(i)}, {"hausdorff", m->region_hausdorff.at(i)}};

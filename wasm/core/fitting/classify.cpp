@@ -176,6 +176,8 @@ Classification classify(const Quadric& f_unit, const Vec3& region_center, double
         const bool same_sign = lambda[0] * lambda[1] > 0;
         if (!has_constant) {
             out.type = same_sign ? QuadricType::empty : QuadricType::intersecting_planes;
+            // The planes y0/a = ±y1/b: a and b are what matters, their scale is arbitrary.
+            if (!same_sign) out.semi_axes = Vec3(1 / std::sqrt(std::abs(lambda[0])), 1 / std::sqrt(std::abs(lambda[1])), 0);
             return finish(center);
         }
         out.semi_axes = Vec3(semi(0, k), semi(1, k), 0);

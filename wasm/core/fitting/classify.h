@@ -53,7 +53,9 @@ struct Classification {
     // (cylinder and cone axis, paraboloid axis, plane normal, the lone-sign axis of a
     // hyperboloid) is column 2.
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-    // Semi-axis lengths along the columns of `rotation` (0 where none).
+    // Semi-axis lengths along the columns of `rotation` (0 where none). Intersecting
+    // planes: y0/a = ±y1/b in the frame (a, b up to a common scale); parallel planes:
+    // y2 = ±semi_axes[2].
     Vec3 semi_axes = Vec3::Zero();
     double radius = 0;      // sphere, cylinder
     double half_angle = 0;  // cone, radians

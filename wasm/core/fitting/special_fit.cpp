@@ -1,5 +1,7 @@
 #include "fitting/special_fit.h"
 
+#include "fitting/distance.h"
+
 #include "fitting/least_squares.h"
 
 #include <Eigen/Dense>
@@ -36,6 +38,11 @@ Vec3 weighted_centroid(const Samples& s) {
 
 }  // namespace
 
+bool has_closed_form(QuadricType type) {
+    return type == QuadricType::plane || type == QuadricType::sphere || type == QuadricType::cylinder ||
+           type == QuadricType::cone;
+}
+
 double special_distance(const Classification& shape, const Vec3& p) {
     const Vec3 d = p - shape.center;
     const Vec3 u = shape.axis();
@@ -51,6 +58,7 @@ double special_distance(const Classification& shape, const Vec3& p) {
             const double along = std::abs(h) * c + rho * s;
             return along >= 0 ? std::abs(rho * c - std::abs(h) * s) : d.norm();
         }
+        case QuadricType::elliptic_paraboloid: return taubin_distance(special_quadric(shape), p);
         default: throw std::invalid_argument("special_distance: not a special type");
     }
 }
@@ -68,6 +76,13 @@ Quadric special_quadric(const Classification& shape) {
             const double co = std::cos(shape.half_angle), s = std::sin(shape.half_angle);
             A = co * co * P - s * s * u * u.transpose();
             break;
+        }
+        case QuadricType::elliptic_paraboloid: {
+            // z' = x'²/a² + y'²/b² about the vertex.
+            const Eigen::Matrix3d& R = shape.rotation;
+            const double k1 = 1 / (shape.semi_axes[0] * shape.semi_axes[0]), k2 = 1 / (shape.semi_axes[1] * shape.semi_axes[1]);
+            A = k1 * R.col(0) * R.col(0).transpose() + k2 * R.col(1) * R.col(1).transpose();
+            return normalized(Quadric::from(A, -R.col(2) - 2 * A * c, c.dot(A * c) + R.col(2).dot(c)));
         }
         default: throw std::invalid_argument("special_quadric: not a special type");
     }
@@ -221,36 +236,78 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
     return fit;
 }
 
-std::optional<SpecialFit> best_special_fit(const Samples& samples, const Quadric& general, double general_rms,
-                                           const SpecialFitOptions& options) {
-    if (samples.points.size() < 6 || !(samples.total_weight > 0)) return std::nullopt;
-    const double limit = (1 + options.relative) * general_rms + options.absolute;
-    auto accept = [&](const std::optional<SpecialFit>& f) { return f && f->rms <= limit; };
-    if (auto plane = fit_plane_geometric(samples); accept(plane)) return plane;
-    if (general.is_plane()) return std::nullopt;
-    if (auto sphere = fit_sphere_geometric(samples); accept(sphere)) return sphere;
-
-    // Axis guesses from the general quadric: the eigenvector of A with the smallest
-    // |eigenvalue| (cylinder), and the one whose eigenvalue's sign stands alone (cone).
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(general.A());
-    const Vec3 lambda = eig.eigenvalues();
-    int flattest = 0;
-    for (int i = 1; i < 3; ++i)
-        if (std::abs(lambda[i]) < std::abs(lambda[flattest])) flattest = i;
-    if (auto cylinder = fit_cylinder_geometric(samples, eig.eigenvectors().col(flattest)); accept(cylinder))
-        return cylinder;
-    const int positives = (lambda.array() > 0).count();
-    if (positives == 1 || positives == 2) {
-        int lone = 0;
-        for (int i = 0; i < 3; ++i)
-            if ((lambda[i] > 0) == (positives == 1)) lone = i;
-        const Eigen::FullPivLU<Eigen::Matrix3d> lu(general.A());
-        if (lu.isInvertible()) {
-            const Vec3 apex = lu.solve(-0.5 * general.b());
-            if (auto cone = fit_cone_geometric(samples, eig.eigenvectors().col(lone), apex); accept(cone)) return cone;
-        }
+std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3& axis_guess) {
+    // Start: the heights over the plane ⊥ axis_guess through the centroid, fitted by a
+    // quadratic; its principal axes and curvatures, and its apex.
+    const Eigen::Matrix3d frame = frame_with_axis(axis_guess);
+    const Vec3 origin = weighted_centroid(s);
+    Eigen::Matrix<double, 6, 6> AtA = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> Atb = Eigen::Matrix<double, 6, 1>::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const Vec3 q = frame.transpose() * (s.points[i] - origin);
+        Eigen::Matrix<double, 6, 1> row;
+        row << q.x() * q.x(), q.x() * q.y(), q.y() * q.y(), q.x(), q.y(), 1;
+        AtA += s.weights[i] * row * row.transpose();
+        Atb += s.weights[i] * row * q.z();
     }
-    return std::nullopt;
+    const Eigen::Matrix<double, 6, 1> c = AtA.ldlt().solve(Atb);
+    if (!c.allFinite()) return std::nullopt;
+    Eigen::Matrix2d H;
+    H << c[0], 0.5 * c[1], 0.5 * c[1], c[2];
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(H);
+    const Eigen::Vector2d k = eig.eigenvalues();
+    if (!(k[0] * k[1] > 0)) return std::nullopt;  // not elliptic
+    const Eigen::Vector2d apex2 = H.ldlt().solve(-0.5 * Eigen::Vector2d(c[3], c[4]));
+    const double apex_z = c[5] + 0.5 * Eigen::Vector2d(c[3], c[4]).dot(apex2);
+    Eigen::Matrix3d start;
+    start.col(0) = frame * Vec3(eig.eigenvectors()(0, 0), eig.eigenvectors()(1, 0), 0);
+    start.col(2) = frame.col(2);
+    start.col(1) = start.col(2).cross(start.col(0));
+    const Vec3 apex = origin + frame * Vec3(apex2.x(), apex2.y(), apex_z);
+    double spread = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - origin).squaredNorm();
+    const double scale = std::sqrt(spread / s.total_weight) + 1e-300;
+    // θ: apex offset (3), axis tilt (2), turn about the axis (1), curvatures (2).
+    auto unpack = [&](const Eigen::Matrix<double, 8, 1>& t, Classification& shape) {
+        const Vec3 axis = (start.col(2) + t[3] * start.col(0) + t[4] * start.col(1)).normalized();
+        Vec3 x = (start.col(0) + t[5] * start.col(1));
+        x = (x - x.dot(axis) * axis).normalized();
+        shape.type = QuadricType::elliptic_paraboloid;
+        shape.center = apex + Vec3(t[0], t[1], t[2]);
+        shape.rotation.col(0) = x;
+        shape.rotation.col(2) = axis;
+        shape.rotation.col(1) = axis.cross(x);
+        shape.semi_axes = Vec3(t[6], t[7], 0);  // curvatures while fitting
+    };
+    auto quadric_of = [](const Classification& shape) {
+        // z' = k1 x'² + k2 y'²: f = k1 x'² + k2 y'² − z' in the shape's frame.
+        const Eigen::Matrix3d& R = shape.rotation;
+        const Eigen::Matrix3d A = shape.semi_axes[0] * R.col(0) * R.col(0).transpose() +
+                                  shape.semi_axes[1] * R.col(1) * R.col(1).transpose();
+        const Vec3 b = -R.col(2) - 2 * A * shape.center;
+        return Quadric::from(A, b, shape.center.dot(A * shape.center) + R.col(2).dot(shape.center));
+    };
+    Eigen::Matrix<double, 8, 1> theta;
+    theta << 0, 0, 0, 0, 0, 0, k[0], k[1];
+    theta = least_squares<8>(
+        s, theta,
+        [&](const Eigen::Matrix<double, 8, 1>& t) {
+            Classification shape;
+            unpack(t, shape);
+            const Quadric q = quadric_of(shape);
+            const double a = q.hessian_norm();
+            return [q, a](const Vec3& p) { return taubin_distance(q, a, p); };
+        },
+        scale);
+    SpecialFit fit;
+    unpack(theta, fit.shape);
+    if (!(fit.shape.semi_axes[0] * fit.shape.semi_axes[1] > 0)) return std::nullopt;
+    const Quadric q = quadric_of(fit.shape);
+    // Report semi-axes as the classification does: √(1/|k|).
+    fit.shape.semi_axes = Vec3(1 / std::sqrt(std::abs(fit.shape.semi_axes[0])), 1 / std::sqrt(std::abs(fit.shape.semi_axes[1])), 0);
+    fit.quadric = normalized(q);
+    fit.rms = weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, p); });
+    return fit;
 }
 
 }  // namespace vqsa

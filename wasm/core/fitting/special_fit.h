@@ -1,5 +1,6 @@
-// Geometric (orthogonal-distance) fits of the special types — plane, sphere, circular
-// cylinder, circular cone — started from a region's general quadric (ALGORITHM §6).
+// Geometric fits of the special types — plane, sphere, circular cylinder, circular cone by
+// orthogonal distances, the elliptic paraboloid by Taubin's — started from a region's
+// general quadric (docs/METHOD.md §6).
 #pragma once
 
 #include "fitting/classify.h"
@@ -16,27 +17,20 @@ struct SpecialFit {
     double rms = 0;        // weighted RMS Euclidean distance of the samples
 };
 
-// Exact distance from p to the special surface (plane, sphere, cylinder, cone).
+// Distance from p to the special surface: exact for plane, sphere, cylinder and cone,
+// Taubin's approximation for the elliptic paraboloid.
 double special_distance(const Classification& shape, const Vec3& p);
 // The quadric of a special surface.
 Quadric special_quadric(const Classification& shape);
+// Whether the type has a closed-form distance and foot point (plane, sphere, cylinder, cone).
+bool has_closed_form(QuadricType type);
 
 std::optional<SpecialFit> fit_plane_geometric(const Samples& samples);
 std::optional<SpecialFit> fit_sphere_geometric(const Samples& samples);
 // `axis_guess`: the direction the general quadric suggests for the axis.
 std::optional<SpecialFit> fit_cylinder_geometric(const Samples& samples, const Vec3& axis_guess);
 std::optional<SpecialFit> fit_cone_geometric(const Samples& samples, const Vec3& axis_guess, const Vec3& apex_guess);
-
-struct SpecialFitOptions {
-    // A special type is accepted when its RMS distance is at most (1 + relative) times
-    // the general quadric's plus `absolute` (unit frame).
-    double relative = 0.25;
-    double absolute = 1e-6;
-};
-
-// Tries plane, sphere, cylinder and cone, in that order (fewest parameters first), and
-// returns the first within tolerance of `general_rms`, if any.
-std::optional<SpecialFit> best_special_fit(const Samples& samples, const Quadric& general, double general_rms,
-                                           const SpecialFitOptions& options = {});
+// z = k1 x² + k2 y² in a frame whose z is `axis_guess` (k1, k2 of one sign).
+std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& samples, const Vec3& axis_guess);
 
 }  // namespace vqsa

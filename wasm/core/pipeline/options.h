@@ -2,7 +2,6 @@
 // and the custom element's attributes are made from.
 #pragma once
 
-#include "fitting/special_fit.h"
 #include "lloyd/lloyd.h"
 #include "post/graph_cut.h"
 #include "post/metrics.h"
@@ -19,8 +18,7 @@ struct Options {
     LloydOptions lloyd;
     bool smooth = true;
     SmoothingOptions smoothing;
-    bool refit = true;  // refit plane, sphere, cylinder and cone by orthogonal distances
-    SpecialFitOptions special;
+    bool refit = true;  // select each region's type among the candidates (fitting/model_selection.h)
     bool project = true;
     // Foot points farther than this (relative to the longest bounding-box side) are
     // taken for stray roots and ignored.

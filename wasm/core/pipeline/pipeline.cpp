@@ -1,5 +1,6 @@
 #include "pipeline/pipeline.h"
 
+#include "fitting/model_selection.h"
 #include "fitting/special_fit.h"
 #include "lloyd/lloyd.h"
 #include "post/graph_cut.h"
@@ -106,8 +107,7 @@ private:
     std::unique_ptr<BoundarySmoother> smoother_;
 };
 
-// The special types (plane, sphere, circular cylinder, cone) by orthogonal distances,
-// one region per step.
+// Each region's type by model selection over its vertices, one region per step.
 class RefitStage : public PipelineStage {
 public:
     RefitStage(const Model& model, const Options& options, State& state)
@@ -120,27 +120,19 @@ public:
     bool step() override {
         state_.phase = "refit";
         const int count = static_cast<int>(state_.proxies.size());
-        if (samples_.empty()) {
-            state_.shapes.assign(count, std::nullopt);
+        if (!started_) {
+            started_ = true;
+            state_.choices.clear();
             if (!options_.refit) return false;
-            samples_.resize(count);
-            for (int f = 0; f < model_.face_count(); ++f) {
-                Samples& s = samples_[state_.labels[f]];
-                const double w = 0.25 * model_.areas[f];
-                for (int v : model_.triangles[f]) s.add(model_.points[v], w);
-                s.add(model_.barycentres[f], w);
-            }
+            state_.choices.resize(count);
+            samples_ = region_vertices();
         }
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            if (p.faces >= 2) {
-                const std::optional<SpecialFit> fit =
-                    best_special_fit(samples_[next_], p.quadric, std::sqrt(p.error / p.area), options_.special);
-                if (fit) {
-                    state_.shapes[next_] = fit->shape;
-                    p.quadric = fit->quadric;
-                }
-            }
+            ModelSelectionOptions selection;
+            selection.classify = options_.lloyd.classify;
+            state_.choices[next_] = select_model(samples_[next_], p.quadric, selection);
+            p.quadric = state_.choices[next_].chosen.quadric;
             samples_[next_] = Samples();
             ++next_;
             return true;
@@ -152,10 +144,25 @@ public:
     }
 
 private:
+    // Every vertex of every region once, all of one weight: under noise each vertex is
+    // one measurement, whatever the size of its faces.
+    std::vector<Samples> region_vertices() const {
+        std::vector<std::uint64_t> uses;  // region << 32 | vertex
+        uses.reserve(3 * model_.triangles.size());
+        for (int f = 0; f < model_.face_count(); ++f)
+            for (int v : model_.triangles[f]) uses.push_back(std::uint64_t(state_.labels[f]) << 32 | std::uint32_t(v));
+        std::sort(uses.begin(), uses.end());
+        uses.erase(std::unique(uses.begin(), uses.end()), uses.end());
+        std::vector<Samples> out(state_.proxies.size());
+        for (std::uint64_t u : uses) out[u >> 32].add(model_.points[u & 0xffffffffu], 1.0);
+        return out;
+    }
+
     const Model& model_;
     const Options& options_;
     State& state_;
     std::vector<Samples> samples_;  // per region
+    bool started_ = false;
     int next_ = 0;
 };
 
@@ -168,8 +175,12 @@ public:
     bool step() override {
         state_.phase = "project";
         std::vector<ProjectionTarget> targets;
-        for (std::size_t i = 0; i < state_.proxies.size(); ++i)
-            targets.push_back({state_.proxies[i].quadric, state_.shapes[i]});
+        for (std::size_t i = 0; i < state_.proxies.size(); ++i) {
+            std::optional<Classification> closed;
+            if (i < state_.choices.size() && has_closed_form(state_.choices[i].chosen.type) && state_.choices[i].chosen.special)
+                closed = state_.choices[i].chosen.shape;
+            targets.push_back({state_.proxies[i].quadric, closed});
+        }
         state_.projected = project_vertices(model_, state_.labels, targets, options_.max_projection_distance);
         return false;
     }
@@ -310,17 +321,21 @@ Result Pipeline::result(double load_seconds) const {
         const Proxy& p = proxies[i];
         ProxyResult out;
         out.id = i;
-        const bool special = i < static_cast<int>(state_.shapes.size()) && state_.shapes[i].has_value();
         Classification unit;
-        if (special) {
-            unit = *state_.shapes[i];
+        if (i < static_cast<int>(state_.choices.size())) {
+            const ModelChoice& choice = state_.choices[i];
+            unit = choice.chosen.shape;
+            out.type = choice.chosen.type;
+            out.special_fit = choice.chosen.special;
+            out.type_rms = choice.chosen.rms * frame.scale;
+            if (choice.runner_up) out.runner_up = {choice.runner_up->type, choice.runner_up->rms * frame.scale};
         } else {
             const RegionFrame region = region_frame(p.moments);
             unit = classify(p.quadric, region.center, region.radius, options_.lloyd.classify);
+            out.type = p.quadric.is_plane() ? QuadricType::plane : unit.type;
         }
         out.shape = change_frame(unit, frame.scale, frame.translation);
-        out.type = p.quadric.is_plane() ? QuadricType::plane : out.shape.type;
-        out.special_fit = special;
+        out.shape.type = out.type;
         out.quadric = normalized(change_frame(p.quadric, frame.scale, frame.translation));
         out.faces = p.faces;
         out.area = p.area * frame.scale * frame.scale;

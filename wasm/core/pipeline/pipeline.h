@@ -5,6 +5,7 @@
 #include "geometry/model.h"
 #include "io/mesh.h"
 #include "pipeline/options.h"
+#include "fitting/model_selection.h"
 #include "pipeline/result.h"
 
 #include <functional>
@@ -58,7 +59,7 @@ public:
     struct State {
         std::vector<int> labels, lloyd_labels;
         std::vector<Proxy> proxies;
-        std::vector<std::optional<Classification>> shapes;  // special fits, unit frame
+        std::vector<ModelChoice> choices;  // per region, unit frame (empty without refit)
         std::vector<char> crease;  // per dual-graph link, when the Lloyd stage used features
         double energy = 0;
         StopReason stop_reason = StopReason::none;

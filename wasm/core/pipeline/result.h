@@ -13,10 +13,19 @@
 
 namespace vqsa {
 
+struct RunnerUp {
+    QuadricType type = QuadricType::plane;
+    double rms = 0;
+};
+
 struct ProxyResult {
     int id = 0;
     QuadricType type = QuadricType::plane;
-    bool special_fit = false;  // refitted as plane, sphere, cylinder or cone by orthogonal distances
+    bool special_fit = false;  // a geometric fit of its type, not the region's general quadric
+    // The chosen type's RMS distance to the region's vertices, and the best candidate of
+    // another type with its own (when types were selected: refit on).
+    double type_rms = 0;
+    std::optional<RunnerUp> runner_up;
     Quadric quadric;           // unit coefficient norm, largest coefficient positive
     Classification shape;      // the type's parameters
     int faces = 0;

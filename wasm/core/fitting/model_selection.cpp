@@ -1,0 +1,109 @@
+#include "fitting/model_selection.h"
+
+#include "fitting/distance.h"
+#include "fitting/special_fit.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace vqsa {
+
+namespace {
+
+double weighted_rms(const Samples& s, const Quadric& q) {
+    const double a = q.hessian_norm();
+    double sum = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const double d = taubin_distance(q, a, s.points[i]);
+        sum += s.weights[i] * d * d;
+    }
+    return std::sqrt(sum / s.total_weight);
+}
+
+// Whether the samples lie on both parts of a two-part quadric (beyond a margin).
+bool on_two_parts(const Classification& c, const Samples& s, double margin) {
+    double weight[2] = {0, 0};
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const Vec3 y = c.rotation.transpose() * (s.points[i] - c.center);
+        const double separation = c.type == QuadricType::intersecting_planes ? std::hypot(y[0], y[1])
+                                  : c.type == QuadricType::hyperbolic_cylinder ? std::abs(y[0])
+                                                                               : std::abs(y[2]);
+        const int side = part_of(c, s.points[i]);
+        if (side != 0 && separation > margin) weight[side > 0 ? 0 : 1] += s.weights[i];
+    }
+    return std::min(weight[0], weight[1]) > 0.01 * s.total_weight;
+}
+
+}  // namespace
+
+ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSelectionOptions& options) {
+    std::vector<TypedFit> candidates;
+    if (s.points.size() < 3 || !(s.total_weight > 0)) {
+        TypedFit only;
+        only.quadric = general;
+        only.parameters = 9;
+        candidates.push_back(only);
+        return {only, std::nullopt};
+    }
+    Vec3 center = Vec3::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i) center += s.weights[i] * s.points[i];
+    center /= s.total_weight;
+    double spread = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - center).squaredNorm();
+    const double radius = std::sqrt(spread / s.total_weight) + 1e-300;
+
+    auto add_special = [&](const std::optional<SpecialFit>& fit, int parameters) {
+        if (!fit || !std::isfinite(fit->rms)) return;
+        // Every candidate measured alike (Taubin's distance is below the true one, more so
+        // away from the surface): a fair contest.
+        candidates.push_back({fit->shape.type, fit->quadric, fit->shape, weighted_rms(s, fit->quadric), parameters, true});
+    };
+    add_special(fit_plane_geometric(s), 3);
+    if (s.points.size() >= 6 && !general.is_plane()) {
+        add_special(fit_sphere_geometric(s), 4);
+        // Axis guesses from the general quadric: the eigenvector of A with the smallest
+        // |eigenvalue| (cylinder), the one whose eigenvalue's sign stands alone (cone),
+        // the one along which the quadric is linear (paraboloid).
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(general.A());
+        const Vec3 lambda = eig.eigenvalues();
+        int flattest = 0;
+        for (int i = 1; i < 3; ++i)
+            if (std::abs(lambda[i]) < std::abs(lambda[flattest])) flattest = i;
+        add_special(fit_cylinder_geometric(s, eig.eigenvectors().col(flattest)), 5);
+        const int positives = (lambda.array() > 0).count();
+        if (positives == 1 || positives == 2) {
+            int lone = 0;
+            for (int i = 0; i < 3; ++i)
+                if ((lambda[i] > 0) == (positives == 1)) lone = i;
+            const Eigen::FullPivLU<Eigen::Matrix3d> lu(general.A());
+            if (lu.isInvertible()) add_special(fit_cone_geometric(s, eig.eigenvectors().col(lone), lu.solve(-0.5 * general.b())), 6);
+        }
+        add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)), 8);
+    }
+    {
+        TypedFit g;
+        g.quadric = normalized(general);
+        g.shape = classify(general, center, radius, options.classify);
+        g.type = general.is_plane() ? QuadricType::plane : g.shape.type;
+        g.rms = weighted_rms(s, general);
+        g.parameters = 9;
+        const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
+        const bool usable = g.type != QuadricType::empty && !pair &&
+                            !(has_two_parts(g.type) && on_two_parts(g.shape, s, 2 * g.rms + options.floor * radius));
+        if (usable && std::isfinite(g.rms)) candidates.push_back(g);
+    }
+
+    const double n = static_cast<double>(s.points.size());
+    const double floor2 = (options.floor * radius) * (options.floor * radius);
+    for (TypedFit& c : candidates) c.bic = n * std::log(c.rms * c.rms + floor2) + c.parameters * std::log(n);
+    std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
+    ModelChoice choice{candidates.front(), std::nullopt};
+    for (std::size_t i = 1; i < candidates.size() && !choice.runner_up; ++i)
+        if (candidates[i].type != choice.chosen.type) choice.runner_up = candidates[i];
+    return choice;
+}
+
+}  // namespace vqsa

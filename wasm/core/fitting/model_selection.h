@@ -1,0 +1,46 @@
+// Which surface a region is: the candidate types fitted to its vertices, and the simplest
+// one the data do not reject, by the Bayesian information criterion (docs/METHOD.md §6).
+#pragma once
+
+#include "fitting/classify.h"
+#include "fitting/fit.h"
+#include "fitting/quadric.h"
+#include "fitting/samples.h"
+
+#include <optional>
+
+namespace vqsa {
+
+struct TypedFit {
+    QuadricType type = QuadricType::plane;
+    Quadric quadric;       // unit coefficient norm
+    Classification shape;  // the type's parameters
+    // Weighted RMS of the samples' Taubin distance (second-order, below the true distance,
+    // equal to it for a plane), the same measure for every candidate.
+    double rms = 0;
+    int parameters = 0;    // degrees of freedom of the type
+    bool special = false;  // one of the geometric fits, not the region's general quadric
+    double bic = 0;
+};
+
+struct ModelChoice {
+    TypedFit chosen;
+    std::optional<TypedFit> runner_up;  // the best candidate of another type
+};
+
+struct ModelSelectionOptions {
+    // Mean squared distances below (floor × region radius)² count as zero: every type
+    // that contains the surface fits a clean tessellation's vertices to rounding.
+    double floor = 1e-9;
+    ClassifyOptions classify;
+};
+
+// `vertices`: each vertex of the region once (the vertices of a CAD tessellation lie on
+// the surface; the barycentres do not), of equal weights under noise per vertex. `general`: the region's quadric. Candidates: plane (3 parameters),
+// sphere (4), circular cylinder (5), circular cone (6), elliptic paraboloid (8) and the
+// general quadric (9) with its affine type — unless it has two parts with vertices on
+// both, or is a pair of planes (one of them is the plane candidate). The chosen one
+// minimises n ln(MSE + floor²) + k ln(n), n the number of vertices.
+ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
+
+}  // namespace vqsa
