@@ -242,16 +242,17 @@ bool has_two_parts(QuadricType type) {
            type == QuadricType::intersecting_planes || type == QuadricType::parallel_planes;
 }
 
-int part_of(const Classification& c, const Vec3& p) {
+int part_of(const Classification& c, const Vec3& p, double margin) {
     const Vec3 y = c.rotation.transpose() * (p - c.center);
-    double side = 0;
+    double side = 0, separation = 0;
     switch (c.type) {
-        case QuadricType::hyperboloid_two_sheets: side = y[2]; break;
-        case QuadricType::hyperbolic_cylinder: side = y[0]; break;
-        case QuadricType::parallel_planes: side = y[2]; break;
-        case QuadricType::intersecting_planes: side = y[0] * y[1]; break;
+        case QuadricType::hyperboloid_two_sheets: side = separation = y[2]; break;
+        case QuadricType::hyperbolic_cylinder: side = separation = y[0]; break;
+        case QuadricType::parallel_planes: side = separation = y[2]; break;
+        case QuadricType::intersecting_planes: side = y[0] * y[1], separation = std::hypot(y[0], y[1]); break;
         default: return 0;
     }
+    if (std::abs(separation) <= margin) return 0;
     return side > 0 ? 1 : side < 0 ? -1 : 0;
 }
 

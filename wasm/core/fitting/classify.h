@@ -71,7 +71,21 @@ Classification change_frame(const Classification& c, double scale, const Vec3& t
 
 // The quadrics with two separate parts (sheets, branches or planes).
 bool has_two_parts(QuadricType type);
-// For those, which part a point lies on (+1 or -1; 0 when undecidable).
-int part_of(const Classification& c, const Vec3& p);
+// For those, which part a point lies on (+1 or -1), or 0 when it lies within `margin` of
+// where the parts separate (the mid-plane of parallel planes or of two sheets, the common
+// line of intersecting planes, the gap between branches).
+int part_of(const Classification& c, const Vec3& p, double margin = 0);
+
+// A region lies on two parts of its quadric when, beyond the margin, both parts hold at
+// least `fraction` of its weight and three of its points. Callers pass a margin of twice
+// the region's RMS distance to the quadric.
+struct PartWeights {
+    double weight[2] = {0, 0};
+    int count[2] = {0, 0};
+    bool both(double total, double fraction = 1e-3) const {
+        const int minor = weight[0] < weight[1] ? 0 : 1;
+        return count[minor] >= 3 && weight[minor] >= fraction * total;
+    }
+};
 
 }  // namespace vqsa

@@ -23,18 +23,13 @@ double weighted_rms(const Samples& s, const Quadric& q) {
     return std::sqrt(sum / s.total_weight);
 }
 
-// Whether the samples lie on both parts of a two-part quadric (beyond a margin).
 bool on_two_parts(const Classification& c, const Samples& s, double margin) {
-    double weight[2] = {0, 0};
+    PartWeights parts;
     for (std::size_t i = 0; i < s.points.size(); ++i) {
-        const Vec3 y = c.rotation.transpose() * (s.points[i] - c.center);
-        const double separation = c.type == QuadricType::intersecting_planes ? std::hypot(y[0], y[1])
-                                  : c.type == QuadricType::hyperbolic_cylinder ? std::abs(y[0])
-                                                                               : std::abs(y[2]);
-        const int side = part_of(c, s.points[i]);
-        if (side != 0 && separation > margin) weight[side > 0 ? 0 : 1] += s.weights[i];
+        const int side = part_of(c, s.points[i], margin);
+        if (side != 0) parts.weight[side > 0 ? 0 : 1] += s.weights[i], ++parts.count[side > 0 ? 0 : 1];
     }
-    return std::min(weight[0], weight[1]) > 0.01 * s.total_weight;
+    return parts.both(s.total_weight);
 }
 
 }  // namespace
@@ -92,7 +87,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         g.parameters = 9;
         const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
         const bool usable = g.type != QuadricType::empty && !pair &&
-                            !(has_two_parts(g.type) && on_two_parts(g.shape, s, 2 * g.rms + options.floor * radius));
+                            !(has_two_parts(g.type) && on_two_parts(g.shape, s, 2 * g.rms));
         if (usable && std::isfinite(g.rms)) candidates.push_back(g);
     }
 

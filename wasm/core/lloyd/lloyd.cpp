@@ -211,7 +211,10 @@ Classification Lloyd::classify_proxy(int proxy) const {
     return classify(proxies_[proxy].quadric, region.center, region.radius, options_.classify);
 }
 
-void Lloyd::stop(StopReason reason) { stop_reason_ = reason; }
+void Lloyd::stop(StopReason reason) {
+    if (reason != StopReason::cancelled) ensure_valid();
+    stop_reason_ = reason;
+}
 
 bool Lloyd::step() {
     if (done()) return false;
@@ -298,7 +301,7 @@ void Lloyd::decide() {
         return start_operation(Operation::split);
     }
     if (target > 0 && count > target) {
-        if (merge_cheapest(false)) return start_operation(Operation::merge);
+        if (merge_cheapest()) return start_operation(Operation::merge);
         return stop(StopReason::proxies);
     }
     if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
@@ -530,51 +533,72 @@ int Lloyd::insert_farthest(int count) {
     return added;
 }
 
-Lloyd::Parts Lloyd::parts(int proxy) const {
-    Parts out;
-    const Classification c = classify_proxy(proxy);
+int Lloyd::side_of(int proxy, int face, const Classification& c, double margin) const {
     if (proxies_[proxy].quadric.is_plane()) {
         // A plane region whose faces face both ways is a sheet seen from both sides: the
         // two faces of a plate thinner than the fit can resolve.
-        const Vec3 n = proxies_[proxy].quadric.b().normalized();
-        const double cos_limit = std::cos(options_.features.crease_angle * M_PI / 180);
-        for (int f = 0; f < model_.face_count(); ++f) {
-            if (labels_[f] != proxy) continue;
-            const double side = features_.normals[f].dot(n);
-            if (std::abs(side) < cos_limit) continue;
-            const int k = side > 0 ? 0 : 1;
-            out.area[k] += model_.areas[f];
-            ++out.faces[k];
-            if (out.best[k] < 0 || errors_[f] < errors_[out.best[k]]) out.best[k] = f;
-        }
-        return out;
+        const double side = features_.normals[face].dot(proxies_[proxy].quadric.b().normalized());
+        if (std::abs(side) < std::cos(options_.features.crease_angle * M_PI / 180)) return 0;
+        return side > 0 ? 1 : -1;
     }
-    if (!has_two_parts(c.type)) return out;
-    // Faces closer to the parts' separation than the noise are on neither.
-    const double noise = region_noise_[proxy];
-    const double margin = options_.chart_factor * std::sqrt(noise / std::max(proxies_[proxy].area, 1e-300)) + 1e-9;
+    // Faces within the margin of where the parts separate are on neither.
+    return part_of(c, model_.barycentres[face], margin);
+}
+
+double Lloyd::part_margin(int proxy) const {
+    return 2 * std::sqrt(proxies_[proxy].error / std::max(proxies_[proxy].area, 1e-300));
+}
+
+Lloyd::Parts Lloyd::parts(int proxy) const {
+    Parts out;
+    const Classification c = classify_proxy(proxy);
+    if (!proxies_[proxy].quadric.is_plane() && !has_two_parts(c.type)) return out;
+    const double margin = part_margin(proxy);
     for (int f = 0; f < model_.face_count(); ++f) {
         if (labels_[f] != proxy) continue;
-        const Vec3 y = c.rotation.transpose() * (model_.barycentres[f] - c.center);
-        const double separation = c.type == QuadricType::intersecting_planes ? std::hypot(y[0], y[1])
-                                  : c.type == QuadricType::hyperbolic_cylinder ? std::abs(y[0])
-                                                                               : std::abs(y[2]);
-        const int side = part_of(c, model_.barycentres[f]);
-        if (side == 0 || separation <= margin) continue;
+        const int side = side_of(proxy, f, c, margin);
+        if (side == 0) continue;
         const int k = side > 0 ? 0 : 1;
-        out.area[k] += model_.areas[f];
-        ++out.faces[k];
+        out.weight[k] += model_.areas[f];
+        ++out.count[k];
         if (out.best[k] < 0 || errors_[f] < errors_[out.best[k]]) out.best[k] = f;
     }
     return out;
+}
+
+void Lloyd::ensure_valid() {
+    // Without further Lloyd iterations (the stage is over): each region still on two parts
+    // of its quadric gives its second part to a new proxy, and at a target count the
+    // cheapest compatible pair merges. Each round removes one invalid region and a merge
+    // never makes one, so this ends; with no compatible pair left, the count is exceeded
+    // rather than a region left invalid.
+    for (std::size_t round = 0; round < 4 * proxies_.size() + 8; ++round) {
+        int chosen = -1;
+        Parts chosen_parts;
+        for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
+            Parts p;
+            if ((chosen < 0 || proxies_[i].error > proxies_[chosen].error) && invalid(i, &p)) chosen = i, chosen_parts = p;
+        }
+        if (chosen < 0) return;
+        const Classification c = classify_proxy(chosen);
+        const double margin = part_margin(chosen);
+        const int added = static_cast<int>(proxies_.size());
+        add_proxy(chosen_parts.best[1]);
+        for (int f = 0; f < model_.face_count(); ++f)
+            if (labels_[f] == chosen && side_of(chosen, f, c, margin) < 0) labels_[f] = added;
+        std::vector<char> changed(proxies_.size(), 0);
+        changed[chosen] = changed[added] = 1;
+        refit_regions(model_, labels_, options_, proxies_, changed);
+        evaluate();
+        if (options_.proxies > 0 && static_cast<int>(proxies_.size()) > options_.proxies) merge_cheapest();
+    }
 }
 
 bool Lloyd::invalid(int proxy, Parts* result) const {
     if (proxies_[proxy].faces < options_.min_quadric_faces) return false;
     const Parts p = parts(proxy);
     if (result) *result = p;
-    const int minor = p.area[0] < p.area[1] ? 0 : 1;
-    return p.faces[minor] >= 3 && p.area[minor] >= options_.split_fraction * proxies_[proxy].area;
+    return p.both(proxies_[proxy].area, options_.split_fraction);
 }
 
 bool Lloyd::split_invalid() {
@@ -596,14 +620,8 @@ bool Lloyd::split_invalid() {
     return true;
 }
 
-bool Lloyd::merge_cheapest(bool gated) {
+bool Lloyd::merge_cheapest() {
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
-
-    // Gates: the paper's |Et - (Ei + Ej)| < 0.5 max Ek on mean squared errors, or, as
-    // in planar VSA's teleportation, a merge that costs less than half the error of
-    // the worst region (which the freed proxy will then be inserted into).
-    double largest = 0, worst_region = 0;
-    for (const Proxy& p : proxies_) largest = std::max(largest, p.fit_error), worst_region = std::max(worst_region, p.area * p.fit_error);
     double best_cost = std::numeric_limits<double>::infinity();
     int best_pair = -1;
     Fit best_fit;
@@ -613,9 +631,6 @@ bool Lloyd::merge_cheapest(bool gated) {
         add_to(united, b.moments);
         const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
         const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
-        if (gated && !(std::abs(fit.mean_squared - (a.fit_error + b.fit_error)) < 0.5 * largest) &&
-            !(cost < 0.5 * worst_region))
-            continue;
         if (cost >= best_cost) continue;
         const RegionFrame region = region_frame(united);
         const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;

@@ -148,10 +148,8 @@ private:
     };
 
     // How a region's faces divide between the two parts of its quadric, if it has two.
-    struct Parts {
-        double area[2] = {0, 0};
-        int faces[2] = {0, 0};
-        int best[2] = {-1, -1};  // face of least error on each part
+    struct Parts : PartWeights {  // weights: areas
+        int best[2] = {-1, -1};     // face of least error on each part
     };
 
     void initialize();
@@ -176,8 +174,13 @@ private:
     Parts parts(int proxy) const;
     bool invalid(int proxy, Parts* parts = nullptr) const;
     bool split_invalid();
-    // The adjacent pair whose union fit costs least; `gated`: only if merging pays.
-    bool merge_cheapest(bool gated);
+    // The adjacent pair whose union fit costs least, if its union is valid.
+    bool merge_cheapest();
+    // Splits what is still invalid at the end of the stage (see lloyd.cpp).
+    void ensure_valid();
+    // Which part of `proxy`'s quadric (classified as `c`) a face lies on: ±1, or 0.
+    int side_of(int proxy, int face, const Classification& c, double margin) const;
+    double part_margin(int proxy) const;
     // Adjacent regions on one surface (their union fits as well as they do apart).
     bool merge_same_surface();
     // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
