@@ -4,6 +4,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <cmath>
+
 namespace vqsa {
 
 namespace {
@@ -81,6 +83,26 @@ Fit plane_local(const LocalMoments& local) {
     return {Quadric::plane(solver.eigenvectors().col(0), Vec3::Zero()), std::max(0.0, solver.eigenvalues()[0])};
 }
 
+// E[(n·q)⁴] / E[(n·q)²]² over the region, q about its centroid: from the degree-4 moments.
+double residual_kurtosis(const LocalMoments& local, const Vec3& n) {
+    double e2 = 0, e4 = 0;
+    for (int i = 0; i <= 4; ++i)
+        for (int j = 0; i + j <= 4; ++j) {
+            const int k4 = 4 - i - j;
+            static const double factorial[] = {1, 1, 2, 6, 24};
+            e4 += 24 / (factorial[i] * factorial[j] * factorial[k4]) * std::pow(n.x(), i) * std::pow(n.y(), j) *
+                  std::pow(n.z(), k4) * local.mean[moment_index(i, j, k4)];
+        }
+    for (int i = 0; i <= 2; ++i)
+        for (int j = 0; i + j <= 2; ++j) {
+            const int k2 = 2 - i - j;
+            static const double factorial[] = {1, 1, 2};
+            e2 += 2 / (factorial[i] * factorial[j] * factorial[k2]) * std::pow(n.x(), i) * std::pow(n.y(), j) *
+                  std::pow(n.z(), k2) * local.mean[moment_index(i, j, k2)];
+        }
+    return e2 > 0 ? e4 / (e2 * e2) : 3;
+}
+
 }  // namespace
 
 RegionFrame region_frame(const Moments& m) {
@@ -114,8 +136,12 @@ Fit fit_region(const Moments& region, const FitOptions& options) {
     // A double plane (n·p − d)² always looks better than the plane: its first-order
     // distance is half the true one, so under noise it wins the comparison. It is the
     // plane, counted twice.
+    // Parallel planes whose distances from the mid-plane are not two-humped (kurtosis of
+    // the plane's residuals above 2: 3 for Gaussian noise about one plane, 1 for two
+    // planes) are one noisy plane too: the fit split its noise in two.
     const Classification shape = classify(quadric.quadric, Vec3::Zero(), 1.0);
-    const bool double_plane = shape.type == QuadricType::parallel_planes && shape.semi_axes.z() == 0;
+    const bool double_plane = shape.type == QuadricType::parallel_planes &&
+                              (shape.semi_axes.z() == 0 || residual_kurtosis(local, plane.quadric.b()) > 2);
     const bool prefer_plane = double_plane ||
                               plane.mean_squared <= (1 + options.plane_tolerance) * quadric.mean_squared + negligible;
     const Fit& best = prefer_plane ? plane : quadric;

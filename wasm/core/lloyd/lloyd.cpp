@@ -546,7 +546,9 @@ int Lloyd::side_of(int proxy, int face, const Classification& c, double margin) 
 }
 
 double Lloyd::part_margin(int proxy) const {
-    return 2 * std::sqrt(proxies_[proxy].error / std::max(proxies_[proxy].area, 1e-300));
+    // Twice the region's RMS distance to its quadric, or to the surface under its noise.
+    const double area = std::max(proxies_[proxy].area, 1e-300);
+    return 2 * std::sqrt(std::max(proxies_[proxy].error, region_noise_[proxy]) / area);
 }
 
 Lloyd::Parts Lloyd::parts(int proxy) const {
@@ -598,6 +600,11 @@ bool Lloyd::invalid(int proxy, Parts* result) const {
     if (proxies_[proxy].faces < options_.min_quadric_faces) return false;
     const Parts p = parts(proxy);
     if (result) *result = p;
+    if (proxies_[proxy].quadric.is_plane()) {
+        // A sheet's other side is a face, not a few faces of noise along the rim.
+        const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
+        return p.count[minor] >= options_.min_quadric_faces && p.weight[minor] >= 0.01 * proxies_[proxy].area;
+    }
     return p.both(proxies_[proxy].area, options_.split_fraction);
 }
 
