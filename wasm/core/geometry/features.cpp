@@ -276,9 +276,9 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // surface by the sagitta of the arc across them, about altitude × dihedral / 8 over
     // the edges bent by less than half the crease angle (the largest of a face's; more is
     // a bend, a chamfer's edge, not a chord of a smooth surface); a fit leaves an RMS of
-    // up to 0.7 of that, the vertices lying on the surface. Per face: a curved face
+    // up to as much, the vertices lying on the surface. Per face: a curved face
     // beside a flat one in a chart (a fillet) keeps its own.
-    constexpr double kSagittaRms = 0.7;
+    constexpr double kSagittaRms = 1.0;
     const double smooth_limit = 0.5 * options.crease_angle * M_PI / 180;
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {

@@ -3,8 +3,6 @@
 #include "geometry/rng.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
@@ -343,8 +341,9 @@ void Lloyd::decide() {
             if (all_explained) finishing_ = true, finish_reason_ = StopReason::fitted;
         }
         if (finishing_) {
-            // One surface, one region: merge neighbours that lie on the same surface.
-            if (merge_same_surface()) return start_operation(Operation::merge);
+            // One surface, one region: merge neighbours that lie on the same surface, and
+            // regions of a handful of faces (too few to tell a surface) into a neighbour.
+            if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
             return stop(finish_reason_);
         }
     }
@@ -366,13 +365,13 @@ void Lloyd::decide() {
     if (added < batch && options_.init == Initialization::features) added += insert_into_clusters(batch - added);
     added += insert_farthest(batch - added);
     inserted_ = added;
-    if (std::getenv("VQSA_DEBUG")) {
-        std::fprintf(stderr, "decide: count %d added %d energy %g\n", count, added, energy_);
-        for (int i = 0; i < count; ++i)
-            std::fprintf(stderr, "  %d faces %d error %g noise %g floor %g explained %d\n", i, proxies_[i].faces, proxies_[i].error,
-                         noise_energy(i), proxies_[i].area * options_.precision * options_.precision, int(explained(i)));
+    if (added == 0 && automatic()) {
+        // Nowhere left to insert: finish as when everything is explained.
+        finishing_ = true, finish_reason_ = StopReason::fitted;
+        if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
+        return stop(finish_reason_);
     }
-    if (added == 0) return stop(automatic() ? StopReason::fitted : StopReason::exhausted);
+    if (added == 0) return stop(StopReason::exhausted);
     start_operation(Operation::insert);
 }
 
@@ -568,6 +567,28 @@ Lloyd::Parts Lloyd::parts(int proxy) const {
     return out;
 }
 
+bool Lloyd::absorb(int region, int excluded) {
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best = -1;
+    Fit best_fit;
+    for (const auto& [a, b] : adjacent_regions(model_, labels_)) {
+        const int other = a == region ? b : b == region ? a : -1;
+        if (other < 0 || other == excluded) continue;
+        Moments united = proxies_[other].moments;
+        add_to(united, proxies_[region].moments);
+        const Fit fit = fit_proxy(united, proxies_[other].faces + proxies_[region].faces, options_);
+        const double cost = united[0] * fit.mean_squared - proxies_[other].area * proxies_[other].fit_error;
+        const RegionFrame frame = region_frame(united);
+        if (cost >= best_cost || has_two_parts(classify(fit.quadric, frame.center, frame.radius, options_.classify).type) ||
+            !one_surface(fit.quadric, region, other))
+            continue;
+        best_cost = cost, best = other, best_fit = fit;
+    }
+    if (best < 0) return false;
+    merge_pair(best, region, best_fit);
+    return true;
+}
+
 void Lloyd::ensure_valid() {
     // Without further Lloyd iterations (the stage is over): each region still on two parts
     // of its quadric gives its second part to a new proxy, and at a target count the
@@ -579,7 +600,13 @@ void Lloyd::ensure_valid() {
         Parts chosen_parts;
         for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
             Parts p;
-            if ((chosen < 0 || proxies_[i].error > proxies_[chosen].error) && invalid(i, &p)) chosen = i, chosen_parts = p;
+            // Here a second part must be substantial (5 %, the paper's split threshold): a
+            // tessellation's facet strip beside a tangent plane is no face of its own, and
+            // the region is reported as one surface all the same (model selection never
+            // names a two-part type).
+            if ((chosen < 0 || proxies_[i].error > proxies_[chosen].error) && invalid(i, &p) &&
+                p.both(proxies_[i].area, 0.05))
+                chosen = i, chosen_parts = p;
         }
         if (chosen < 0) return;
         const Classification c = classify_proxy(chosen);
@@ -592,6 +619,9 @@ void Lloyd::ensure_valid() {
         changed[chosen] = changed[added] = 1;
         refit_regions(model_, labels_, options_, proxies_, changed);
         evaluate();
+        // The split-off part joins another neighbour it lies on one surface with, if any
+        // (a tessellation's facet beside a tangent plane belongs to the curved side).
+        absorb(added, chosen);
         if (options_.proxies > 0 && static_cast<int>(proxies_.size()) > options_.proxies) merge_cheapest();
     }
 }
@@ -658,8 +688,7 @@ bool Lloyd::merge_same_surface() {
     const int count = static_cast<int>(proxies_.size());
     const double k2 = options_.noise_factor * options_.noise_factor;
     std::vector<double> noise(count, 0);
-    std::vector<std::vector<int>> faces(count);
-    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += k2 * face_noise_[f], faces[labels_[f]].push_back(f);
+    for (int i = 0; i < count; ++i) noise[i] = k2 * region_noise_[i];
     struct Candidate {
         double cost;
         int pair;
@@ -682,26 +711,32 @@ bool Lloyd::merge_same_surface() {
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
     });
-    FaceErrors evaluator;
     for (const Candidate& c : candidates) {
         const auto [i, j] = pairs[c.pair];
-        evaluator.reset(model_, {c.fit.quadric});
-        bool explains = true;
-        for (int r : {i, j}) {
-            double error = 0;
-            for (int f : faces[r]) error += evaluator(f, 0);
-            // Within the tolerance a chart gets against its own fit (chart_factor).
-            const double tolerance = options_.chart_factor * options_.chart_factor * region_noise_[r];
-            if (std::getenv("VQSA_DEBUG")) std::fprintf(stderr, "verify %d %d part %d: error %g own %g tolerance %g\n", i, j, r, error, proxies_[r].error, tolerance);
-            explains = explains && (error <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error <= tolerance);
-        }
-        if (!explains || bends_through_creases(c.fit.quadric, i, j) || faces_both_ways(c.fit.quadric, i, j) ||
-            strays(c.fit.quadric, i) || strays(c.fit.quadric, j))
-            continue;
+        if (!one_surface(c.fit.quadric, i, j)) continue;
         merge_pair(i, j, c.fit);
         return true;
     }
     return false;
+}
+
+bool Lloyd::one_surface(const Quadric& q, int a, int b) const {
+    // Each part judged alone, so that a small region's misfit does not hide in a large
+    // region's noise: within a quarter of its own fit's error, or within the tolerance a
+    // chart gets against its own fit (chart_factor² times its noise).
+    FaceErrors evaluator;
+    evaluator.reset(model_, {q});
+    double error[2] = {0, 0};
+    for (int f = 0; f < model_.face_count(); ++f) {
+        const int k = labels_[f] == a ? 0 : labels_[f] == b ? 1 : -1;
+        if (k >= 0) error[k] += evaluator(f, 0);
+    }
+    for (int k = 0; k < 2; ++k) {
+        const int r = k == 0 ? a : b;
+        const double tolerance = options_.chart_factor * options_.chart_factor * region_noise_[r];
+        if (!(error[k] <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error[k] <= tolerance)) return false;
+    }
+    return !bends_through_creases(q, a, b) && !faces_both_ways(q, a, b) && !strays(q, a) && !strays(q, b);
 }
 
 bool Lloyd::faces_both_ways(const Quadric& q, int a, int b) const {
@@ -747,6 +782,30 @@ bool Lloyd::bends_through_creases(const Quadric& q, int a, int b) const {
         }
     }
     return crossings > 0 && 2 * bends >= crossings;
+}
+
+bool Lloyd::merge_handful() {
+    const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_pair = -1;
+    Fit best_fit;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const Proxy &a = proxies_[pairs[k].first], &b = proxies_[pairs[k].second];
+        if (std::min(a.faces, b.faces) >= options_.min_quadric_faces) continue;
+        Moments united = a.moments;
+        add_to(united, b.moments);
+        const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
+        const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
+        if (cost >= best_cost) continue;
+        const RegionFrame region = region_frame(united);
+        if (has_two_parts(classify(fit.quadric, region.center, region.radius, options_.classify).type) ||
+            faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second))
+            continue;
+        best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
+    }
+    if (best_pair < 0) return false;
+    merge_pair(pairs[best_pair].first, pairs[best_pair].second, best_fit);
+    return true;
 }
 
 bool Lloyd::repair_stuck() {

@@ -178,11 +178,18 @@ private:
     bool merge_cheapest();
     // Splits what is still invalid at the end of the stage (see lloyd.cpp).
     void ensure_valid();
+    // Merges `region` into the neighbour (not `excluded`) it costs least and lies on one
+    // surface with (one_surface), whose union's quadric has one part.
+    bool absorb(int region, int excluded);
     // Which part of `proxy`'s quadric (classified as `c`) a face lies on: ±1, or 0.
     int side_of(int proxy, int face, const Classification& c, double margin) const;
     double part_margin(int proxy) const;
     // Adjacent regions on one surface (their union fits as well as they do apart).
     bool merge_same_surface();
+    // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
+    bool merge_handful();
+    // Whether q explains regions a and b as one surface (see merge_same_surface).
+    bool one_surface(const Quadric& q, int a, int b) const;
     // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
     bool faces_both_ways(const Quadric& q, int a, int b) const;
     // Whether most of a region's faces have normals off q's by more than the crease angle.
