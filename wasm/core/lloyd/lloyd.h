@@ -60,7 +60,7 @@ struct LloydOptions {
     // A region whose quadric has two parts is split when the smaller part holds at
     // least this fraction of its area (and three faces); smaller second parts are
     // reported and refitted as the larger part's surface.
-    double split_fraction = 0.001;
+    double split_fraction = 0.05;
     // Regions with fewer faces get a plane: a quadric through a handful of flat
     // triangles is underdetermined.
     int min_quadric_faces = 10;
