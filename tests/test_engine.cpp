@@ -108,16 +108,19 @@ TEST(Engine, SameSeedSameLabelsAndEveryComponentGetsAProxy) {
 
 TEST(Engine, FandiskReachesTwentyTwoProxiesWithConnectedRegions) {
     const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
-    int insertions = 0, events = 0;
+    int insertions = 0, events = 0, most_inserted = 0;
     const Result r = approximate(mesh, with_proxies(22), [&](const Progress& p) {
         ++events;
-        insertions += std::string(p.phase) == "insert";
+        if (std::string(p.phase) == "insert") ++insertions, most_inserted = std::max(most_inserted, p.proxies);
         return true;
     });
     EXPECT_EQ(r.stop_reason, StopReason::proxies);
     EXPECT_EQ(r.proxies.size(), 22u);
-    EXPECT_GT(insertions, 10);
-    EXPECT_GT(events, insertions);
+    // Proxies are inserted one by one (or a few per round) up to the count, with
+    // relaxation between: the callback sees the growth.
+    EXPECT_GT(insertions, 5);
+    EXPECT_EQ(most_inserted, 22);
+    EXPECT_GT(events, 2 * insertions);
     EXPECT_TRUE(regions_connected(mesh, r));
     // Planar VSA with 80 proxies reaches about 1.4e-3 of the diagonal; quadrics at 22 do much better.
     EXPECT_LT(r.rms_error_relative, 1.5e-3);
@@ -155,8 +158,7 @@ TEST(Engine, IterationCapIsHonoured) {
 
 TEST(Engine, RejectsBadOptions) {
     Shape capsule = make_capsule(0.7, 2.0, 16, 4);
-    Options none;
-    EXPECT_THROW(Pipeline(capsule.mesh, none), std::invalid_argument);
+    EXPECT_THROW(Pipeline(capsule.mesh, with_proxies(-2)), std::invalid_argument);
     Options negative;
     negative.lloyd.tolerance = -1;
     EXPECT_THROW(Pipeline(capsule.mesh, negative), std::invalid_argument);

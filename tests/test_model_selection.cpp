@@ -54,7 +54,7 @@ TEST(ModelSelection, EveryTypeKeepsItsTypeFromACleanMesh) {
         SCOPED_TRACE(surface.name);
         const Patch patch = mesh_patch(surface, test::random_rotation(rng), Vec3(0.3, -1, 2), 0, 1, rng);
         const ModelChoice choice = select_model(patch.vertices, patch.general);
-        EXPECT_STREQ(type_name(choice.chosen.type), type_name(surface.type));
+        EXPECT_STREQ(type_name(choice.chosen.type), type_name(surface.type)) << "RMS " << choice.chosen.rms;
         if (surface.type == QuadricType::plane) continue;  // nothing else is fitted to a plane
         ASSERT_TRUE(choice.runner_up.has_value());
         EXPECT_NE(choice.runner_up->type, choice.chosen.type);
@@ -76,7 +76,7 @@ TEST(ModelSelection, NoiseDoesNotAddParameters) {
         const double size = surface.type == QuadricType::sphere ? 2.0 : 2.2;  // about the patch's diagonal
         const Patch patch = mesh_patch(surface, R, t, 0.002, size, rng, 80);
         const ModelChoice choice = select_model(patch.vertices, patch.general);
-        EXPECT_STREQ(type_name(choice.chosen.type), type_name(surface.type));
+        EXPECT_STREQ(type_name(choice.chosen.type), type_name(surface.type)) << "RMS " << choice.chosen.rms;
         const Classification& s = choice.chosen.shape;
         switch (surface.type) {
             case QuadricType::plane: EXPECT_LT(angle_degrees(s.axis(), R.col(2)), 0.1); break;

@@ -29,6 +29,28 @@ const char* type_name(QuadricType type) {
     return "unknown";
 }
 
+int degrees_of_freedom(QuadricType type) {
+    switch (type) {
+        case QuadricType::plane: return 3;
+        case QuadricType::sphere: return 4;
+        case QuadricType::cylinder: return 5;  // axis line 4, radius
+        case QuadricType::cone: return 6;      // apex 3, axis 2, angle
+        case QuadricType::parabolic_cylinder: return 6;  // vertex line 4, turn about it, curvature
+        case QuadricType::elliptic_cylinder:
+        case QuadricType::hyperbolic_cylinder: return 7;  // axis line 4, turn about it, two semi-axes
+        case QuadricType::intersecting_planes: return 6;
+        case QuadricType::parallel_planes: return 4;
+        case QuadricType::elliptic_cone: return 8;  // apex 3, rotation 3, two slopes
+        case QuadricType::elliptic_paraboloid:
+        case QuadricType::hyperbolic_paraboloid: return 8;  // vertex 3, rotation 3, two curvatures
+        case QuadricType::ellipsoid:
+        case QuadricType::hyperboloid_one_sheet:
+        case QuadricType::hyperboloid_two_sheets:
+        case QuadricType::empty: return 9;
+    }
+    return 9;
+}
+
 namespace {
 
 bool nearly_equal(double a, double b, double tolerance) {

@@ -30,6 +30,11 @@ enum class QuadricType {
 
 const char* type_name(QuadricType type);
 
+// Degrees of freedom of a surface of this type in space (pose and shape): 3 for a plane,
+// 4 for a sphere, 7 for an elliptic cylinder, 9 for an ellipsoid. Model selection charges
+// a fit by this count, so a general quadric that is an elliptic cylinder pays for 7.
+int degrees_of_freedom(QuadricType type);
+
 struct ClassifyOptions {
     // An eigenvalue of A is zero when below this fraction of the largest one.
     double zero_eigenvalue = 1e-3;

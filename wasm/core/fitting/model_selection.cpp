@@ -50,15 +50,16 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - center).squaredNorm();
     const double radius = std::sqrt(spread / s.total_weight) + 1e-300;
 
-    auto add_special = [&](const std::optional<SpecialFit>& fit, int parameters) {
+    auto add_special = [&](const std::optional<SpecialFit>& fit) {
         if (!fit || !std::isfinite(fit->rms)) return;
         // Every candidate measured alike (Taubin's distance is below the true one, more so
         // away from the surface): a fair contest.
-        candidates.push_back({fit->shape.type, fit->quadric, fit->shape, weighted_rms(s, fit->quadric), parameters, true});
+        candidates.push_back({fit->shape.type, fit->quadric, fit->shape, weighted_rms(s, fit->quadric),
+                              degrees_of_freedom(fit->shape.type), true});
     };
-    add_special(fit_plane_geometric(s), 3);
+    add_special(fit_plane_geometric(s));
     if (s.points.size() >= 6 && !general.is_plane()) {
-        add_special(fit_sphere_geometric(s), 4);
+        add_special(fit_sphere_geometric(s));
         // Axis guesses from the general quadric: the eigenvector of A with the smallest
         // |eigenvalue| (cylinder), the one whose eigenvalue's sign stands alone (cone),
         // the one along which the quadric is linear (paraboloid).
@@ -67,24 +68,29 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         int flattest = 0;
         for (int i = 1; i < 3; ++i)
             if (std::abs(lambda[i]) < std::abs(lambda[flattest])) flattest = i;
-        add_special(fit_cylinder_geometric(s, eig.eigenvectors().col(flattest)), 5);
+        add_special(fit_cylinder_geometric(s, eig.eigenvectors().col(flattest)));
         const int positives = (lambda.array() > 0).count();
         if (positives == 1 || positives == 2) {
             int lone = 0;
             for (int i = 0; i < 3; ++i)
                 if ((lambda[i] > 0) == (positives == 1)) lone = i;
             const Eigen::FullPivLU<Eigen::Matrix3d> lu(general.A());
-            if (lu.isInvertible()) add_special(fit_cone_geometric(s, eig.eigenvectors().col(lone), lu.solve(-0.5 * general.b())), 6);
+            if (lu.isInvertible()) add_special(fit_cone_geometric(s, eig.eigenvectors().col(lone), lu.solve(-0.5 * general.b())));
         }
-        add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)), 8);
+        add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)));
     }
-    {
+    // The region's quadric was fitted to its triangles, which a CAD tessellation lays
+    // inside curved surfaces; the special fits see the vertices. Both general quadrics
+    // compete, each as its affine type.
+    Moments vertex_moments{};
+    for (std::size_t i = 0; i < s.points.size(); ++i) add_to(vertex_moments, point_moments(s.points[i], s.weights[i]));
+    for (const Quadric& q : {general, fit_taubin(vertex_moments).quadric}) {
         TypedFit g;
-        g.quadric = normalized(general);
-        g.shape = classify(general, center, radius, options.classify);
-        g.type = general.is_plane() ? QuadricType::plane : g.shape.type;
-        g.rms = weighted_rms(s, general);
-        g.parameters = 9;
+        g.quadric = normalized(q);
+        g.shape = classify(q, center, radius, options.classify);
+        g.type = q.is_plane() ? QuadricType::plane : g.shape.type;
+        g.rms = weighted_rms(s, q);
+        g.parameters = degrees_of_freedom(g.type);
         const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
         const bool usable = g.type != QuadricType::empty && !pair &&
                             !(has_two_parts(g.type) && on_two_parts(g.shape, s, 2 * g.rms));

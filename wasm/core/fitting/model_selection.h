@@ -38,7 +38,7 @@ struct ModelSelectionOptions {
 // `vertices`: each vertex of the region once (the vertices of a CAD tessellation lie on
 // the surface; the barycentres do not), of equal weights under noise per vertex. `general`: the region's quadric. Candidates: plane (3 parameters),
 // sphere (4), circular cylinder (5), circular cone (6), elliptic paraboloid (8) and the
-// general quadric (9) with its affine type — unless it has two parts with vertices on
+// general quadric with its affine type (its degrees of freedom, 6 to 9) — unless it has two parts with vertices on
 // both, or is a pair of planes (one of them is the plane candidate). The chosen one
 // minimises n ln(MSE + floor²) + k ln(n), n the number of vertices.
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});

@@ -36,24 +36,27 @@ constexpr int kBinomial[5][5] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6,
 
 int moment_index(int i, int j, int k) { return table().index[i][j][k]; }
 
+Moments point_moments(const Vec3& p, double weight) {
+    const MomentTable& t = table();
+    double pw[3][5];
+    for (int axis = 0; axis < 3; ++axis) {
+        pw[axis][0] = 1.0;
+        for (int e = 1; e <= 4; ++e) pw[axis][e] = pw[axis][e - 1] * p[axis];
+    }
+    Moments m;
+    for (int n = 0; n < kMomentCount; ++n) m[n] = weight * pw[0][t.exponent[n][0]] * pw[1][t.exponent[n][1]] * pw[2][t.exponent[n][2]];
+    return m;
+}
+
 Moments triangle_moments(const Vec3& a, const Vec3& b, const Vec3& c) {
     const double area = 0.5 * (b - a).cross(c - a).norm();
     const double weight[2] = {kW1 * area, kW2 * area};
     const double alpha[2] = {kA1, kA2};
-    const MomentTable& t = table();
     Moments m{};
     for (int rule = 0; rule < 2; ++rule) {
         const double s = alpha[rule], r = 1.0 - 2.0 * s;
         const Vec3 points[3] = {r * a + s * b + s * c, s * a + r * b + s * c, s * a + s * b + r * c};
-        for (const Vec3& p : points) {
-            double pw[3][5];
-            for (int axis = 0; axis < 3; ++axis) {
-                pw[axis][0] = 1.0;
-                for (int e = 1; e <= 4; ++e) pw[axis][e] = pw[axis][e - 1] * p[axis];
-            }
-            for (int n = 0; n < kMomentCount; ++n)
-                m[n] += weight[rule] * pw[0][t.exponent[n][0]] * pw[1][t.exponent[n][1]] * pw[2][t.exponent[n][2]];
-        }
+        for (const Vec3& p : points) add_to(m, point_moments(p, weight[rule]));
     }
     return m;
 }

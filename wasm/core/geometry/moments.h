@@ -20,6 +20,10 @@ int moment_index(int i, int j, int k);
 
 Moments triangle_moments(const Vec3& a, const Vec3& b, const Vec3& c);
 
+// The moments of a weighted point: fitting to a point set (a region's vertices, which
+// lie on a CAD surface where its triangles do not) sums these.
+Moments point_moments(const Vec3& p, double weight);
+
 // ∫ ((p - center) / scale)^e dA for every exponent e: the same surface seen from a
 // frame centred at `center` and shrunk by `scale` (the area element is unchanged).
 Moments shifted_moments(const Moments& m, const Vec3& center, double scale);
