@@ -532,11 +532,11 @@ int Lloyd::insert_farthest(int count) {
     return added;
 }
 
-int Lloyd::side_of(int proxy, int face, const Classification& c, double margin) const {
-    if (proxies_[proxy].quadric.is_plane()) {
+int Lloyd::side_of(const Quadric& q, int face, const Classification& c, double margin) const {
+    if (q.is_plane()) {
         // A plane region whose faces face both ways is a sheet seen from both sides: the
         // two faces of a plate thinner than the fit can resolve.
-        const double side = features_.normals[face].dot(proxies_[proxy].quadric.b().normalized());
+        const double side = features_.normals[face].dot(q.b().normalized());
         if (std::abs(side) < std::cos(options_.features.crease_angle * M_PI / 180)) return 0;
         return side > 0 ? 1 : -1;
     }
@@ -550,14 +550,12 @@ double Lloyd::part_margin(int proxy) const {
     return 2 * std::sqrt(std::max(proxies_[proxy].error, region_noise_[proxy]) / area);
 }
 
-Lloyd::Parts Lloyd::parts(int proxy) const {
+Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double margin, int a, int b) const {
     Parts out;
-    const Classification c = classify_proxy(proxy);
-    if (!proxies_[proxy].quadric.is_plane() && !has_two_parts(c.type)) return out;
-    const double margin = part_margin(proxy);
+    if (!q.is_plane() && !has_two_parts(c.type)) return out;
     for (int f = 0; f < model_.face_count(); ++f) {
-        if (labels_[f] != proxy) continue;
-        const int side = side_of(proxy, f, c, margin);
+        if (labels_[f] != a && labels_[f] != b) continue;
+        const int side = side_of(q, f, c, margin);
         if (side == 0) continue;
         const int k = side > 0 ? 0 : 1;
         out.weight[k] += model_.areas[f];
@@ -565,6 +563,25 @@ Lloyd::Parts Lloyd::parts(int proxy) const {
         if (out.best[k] < 0 || errors_[f] < errors_[out.best[k]]) out.best[k] = f;
     }
     return out;
+}
+
+bool Lloyd::on_two_parts(const Quadric& q, const Parts& p, double area) const {
+    if (q.is_plane()) {
+        // A sheet's other side is a face, not a few faces of noise along the rim.
+        const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
+        return p.count[minor] >= options_.min_quadric_faces && p.weight[minor] >= 0.01 * area;
+    }
+    return p.both(area, options_.split_fraction);
+}
+
+bool Lloyd::union_on_two_parts(const Fit& fit, const Moments& united, int a, int b) const {
+    // As for a region (invalid): a union whose quadric has two parts is fine while its
+    // faces lie on one of them.
+    const RegionFrame frame = region_frame(united);
+    const Classification c = classify(fit.quadric, frame.center, frame.radius, options_.classify);
+    const double area = std::max(united[0], 1e-300);
+    const double margin = 2 * std::sqrt(std::max(fit.mean_squared, (region_noise_[a] + region_noise_[b]) / area));
+    return on_two_parts(fit.quadric, parts(fit.quadric, c, margin, a, b), area);
 }
 
 bool Lloyd::absorb(int region, int excluded) {
@@ -578,9 +595,7 @@ bool Lloyd::absorb(int region, int excluded) {
         add_to(united, proxies_[region].moments);
         const Fit fit = fit_proxy(united, proxies_[other].faces + proxies_[region].faces, options_);
         const double cost = united[0] * fit.mean_squared - proxies_[other].area * proxies_[other].fit_error;
-        const RegionFrame frame = region_frame(united);
-        if (cost >= best_cost || has_two_parts(classify(fit.quadric, frame.center, frame.radius, options_.classify).type) ||
-            !one_surface(fit.quadric, region, other))
+        if (cost >= best_cost || union_on_two_parts(fit, united, region, other) || !one_surface(fit.quadric, region, other))
             continue;
         best_cost = cost, best = other, best_fit = fit;
     }
@@ -614,7 +629,7 @@ void Lloyd::ensure_valid() {
         const int added = static_cast<int>(proxies_.size());
         add_proxy(chosen_parts.best[1]);
         for (int f = 0; f < model_.face_count(); ++f)
-            if (labels_[f] == chosen && side_of(chosen, f, c, margin) < 0) labels_[f] = added;
+            if (labels_[f] == chosen && side_of(proxies_[chosen].quadric, f, c, margin) < 0) labels_[f] = added;
         std::vector<char> changed(proxies_.size(), 0);
         changed[chosen] = changed[added] = 1;
         refit_regions(model_, labels_, options_, proxies_, changed);
@@ -628,14 +643,10 @@ void Lloyd::ensure_valid() {
 
 bool Lloyd::invalid(int proxy, Parts* result) const {
     if (proxies_[proxy].faces < options_.min_quadric_faces) return false;
-    const Parts p = parts(proxy);
+    const Quadric& q = proxies_[proxy].quadric;
+    const Parts p = parts(q, classify_proxy(proxy), part_margin(proxy), proxy, proxy);
     if (result) *result = p;
-    if (proxies_[proxy].quadric.is_plane()) {
-        // A sheet's other side is a face, not a few faces of noise along the rim.
-        const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
-        return p.count[minor] >= options_.min_quadric_faces && p.weight[minor] >= 0.01 * proxies_[proxy].area;
-    }
-    return p.both(proxies_[proxy].area, options_.split_fraction);
+    return on_two_parts(q, p, proxies_[proxy].area);
 }
 
 bool Lloyd::split_invalid() {
@@ -669,9 +680,9 @@ bool Lloyd::merge_cheapest() {
         const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
         const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
         if (cost >= best_cost) continue;
-        const RegionFrame region = region_frame(united);
-        const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (has_two_parts(type) || faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second)) continue;
+        if (union_on_two_parts(fit, united, pairs[k].first, pairs[k].second) ||
+            faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second))
+            continue;
         best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
     }
     if (best_pair < 0) return false;
@@ -797,8 +808,7 @@ bool Lloyd::merge_handful() {
         const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
         const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
         if (cost >= best_cost) continue;
-        const RegionFrame region = region_frame(united);
-        if (has_two_parts(classify(fit.quadric, region.center, region.radius, options_.classify).type) ||
+        if (union_on_two_parts(fit, united, pairs[k].first, pairs[k].second) ||
             faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second))
             continue;
         best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;

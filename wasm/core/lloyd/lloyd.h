@@ -171,7 +171,13 @@ private:
     int insert_into_clusters(int count);
     // Into the `count` regions of largest error (only unexplained ones when automatic).
     int insert_farthest(int count);
-    Parts parts(int proxy) const;
+    // The faces of regions a and b (a == b for one region) on each part of q, classified
+    // as c; faces within `margin` of where the parts separate count on neither.
+    Parts parts(const Quadric& q, const Classification& c, double margin, int a, int b) const;
+    // Whether faces of that area lie on two parts (enough of them to count; see invalid).
+    bool on_two_parts(const Quadric& q, const Parts& p, double area) const;
+    // Whether the union of a and b, fitted by `fit`, would be an invalid region.
+    bool union_on_two_parts(const Fit& fit, const Moments& united, int a, int b) const;
     bool invalid(int proxy, Parts* parts = nullptr) const;
     bool split_invalid();
     // The adjacent pair whose union fit costs least, if its union is valid.
@@ -181,8 +187,8 @@ private:
     // Merges `region` into the neighbour (not `excluded`) it costs least and lies on one
     // surface with (one_surface), whose union's quadric has one part.
     bool absorb(int region, int excluded);
-    // Which part of `proxy`'s quadric (classified as `c`) a face lies on: ±1, or 0.
-    int side_of(int proxy, int face, const Classification& c, double margin) const;
+    // Which part of q (classified as `c`) a face lies on: ±1, or 0.
+    int side_of(const Quadric& q, int face, const Classification& c, double margin) const;
     double part_margin(int proxy) const;
     // Adjacent regions on one surface (their union fits as well as they do apart).
     bool merge_same_surface();
