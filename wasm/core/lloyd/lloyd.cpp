@@ -680,8 +680,9 @@ bool Lloyd::merge_cheapest() {
         const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
         const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
         if (cost >= best_cost) continue;
-        if (union_on_two_parts(fit, united, pairs[k].first, pairs[k].second) ||
-            faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second))
+        const RegionFrame region = region_frame(united);
+        const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
+        if (has_two_parts(type) || faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second))
             continue;
         best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
     }
