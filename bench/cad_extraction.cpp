@@ -38,26 +38,9 @@ struct Outcome {
     std::string stop;
 };
 
-// Regions whose reported quadric has two parts and whose faces lie on both.
-int two_part_regions(const vqsa::Part& part, const vqsa::Result& r) {
-    int count = 0;
-    for (const vqsa::ProxyResult& p : r.proxies) {
-        if (!vqsa::has_two_parts(p.type)) continue;
-        double area[2] = {0, 0};
-        for (std::size_t t = 0; t < r.face_labels.size(); ++t) {
-            if (r.face_labels[t] != p.id) continue;
-            const vqsa::Triangle& tri = part.mesh.triangles[t];
-            const vqsa::Vec3 &a = part.mesh.vertices[tri[0]], &b = part.mesh.vertices[tri[1]], &c = part.mesh.vertices[tri[2]];
-            const int side = vqsa::part_of(p.shape, (a + b + c) / 3);
-            if (side != 0) area[side > 0 ? 0 : 1] += 0.5 * (b - a).cross(c - a).norm();
-        }
-        count += std::min(area[0], area[1]) > 0.01 * (area[0] + area[1]);
-    }
-    return count;
-}
-
 std::string dump_dir;  // --dump: a GLB of every run, for bench/render.mjs
 bool verbose = false;
+int seed_offset = 0;  // --seed-offset: the same meshes, other seeds for the method's choices
 
 Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::string& name,
             const std::string& variant = "") {
@@ -65,7 +48,6 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
     options.lloyd.proxies = proxies;
     options.lloyd.seed = seed;
     options.project = false;
-    if (std::getenv("VQSA_NO_SMOOTH")) options.smooth = false;
     const auto t0 = std::chrono::steady_clock::now();
     vqsa::Pipeline pipeline(part.mesh, options);
     std::string last;
@@ -80,7 +62,7 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
     o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.proxies = static_cast<int>(r.proxies.size());
     o.accuracy = vqsa::score_partition(part, r.face_labels, o.proxies).accuracy;
-    o.two_part = two_part_regions(part, r);
+    o.two_part = vqsa::two_part_regions(part.mesh, r);
     o.stop = vqsa::stop_reason_name(r.stop_reason);
     if (!variant.empty()) {
         const vqsa::PartitionScore score = vqsa::score_partition(part, r.face_labels, o.proxies);
@@ -127,8 +109,9 @@ int main(int argc, char** argv) {
         else if (flag == "--dump") dump_dir = argv[i + 1];
         else if (flag == "--pose") pose = std::string(argv[i + 1]) == "1";
         else if (flag == "--verbose") verbose = std::string(argv[i + 1]) == "1";
+        else if (flag == "--seed-offset") seed_offset = std::stoi(argv[i + 1]);
         else {
-            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1]\n";
+            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1] [--seed-offset K]\n";
             return 2;
         }
     }
@@ -144,8 +127,9 @@ int main(int argc, char** argv) {
         const vqsa::Part part = vqsa::make_part(c.part, options);
         const int faces = static_cast<int>(part.surfaces.size());
         const std::string name = c.part + "_" + c.variant;
-        const Outcome truth = run(part, faces, c.options.seed, name + "_true", c.variant);
-        const Outcome automatic = run(part, 0, c.options.seed, name + "_auto");
+        const std::uint64_t seed = c.options.seed + seed_offset;
+        const Outcome truth = run(part, faces, seed, name + "_true", c.variant);
+        const Outcome automatic = run(part, 0, seed, name + "_auto");
         std::printf("| %s | %s | %d | %zu | %.4f | %d | %.4f | %d | %.2f |\n", c.part.c_str(), c.variant.c_str(), faces,
                     part.mesh.triangles.size(), truth.accuracy, automatic.proxies, automatic.accuracy,
                     truth.two_part + automatic.two_part, truth.seconds + automatic.seconds);

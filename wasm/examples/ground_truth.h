@@ -3,6 +3,7 @@
 #pragma once
 
 #include "cad_parts.h"
+#include "pipeline/result.h"
 
 #include <string>
 #include <vector>
@@ -28,6 +29,10 @@ std::vector<CorpusCase> cad_corpus();
 
 // `labels`: region of every kept triangle of part.mesh; `regions`: how many there are.
 PartitionScore score_partition(const Part& part, const std::vector<int>& labels, int regions);
+
+// Regions of a result whose reported type has two parts and whose faces lie on both
+// (each part holding more than 1 % of the region's area): what a valid result never has.
+int two_part_regions(const Mesh& mesh, const Result& result);
 
 // The assignment maximising Σ weight[i][assignment[i]] over distinct columns (-1 where a
 // row gets none): the Hungarian method, O(n³) on the square completion.

@@ -1,0 +1,176 @@
+// CAD extraction: the procedural corpus (examples/cad_parts.h) scored against its true
+// faces at the true count and with the automatic count; validity of every result (no
+// region on two parts of its quadric) on the corpus, the shared meshes and tolerance runs;
+// the seed and the initialisations.
+#include "cad_parts.h"
+#include "ground_truth.h"
+#include "io/mesh_io.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+using namespace vqsa;
+
+namespace {
+
+struct Outcome {
+    double accuracy;
+    int regions;
+    int two_part;
+};
+
+Outcome run(const Part& part, const Options& options) {
+    const Result r = test::approximate(part.mesh, options);
+    const int regions = static_cast<int>(r.proxies.size());
+    return {score_partition(part, r.face_labels, regions).accuracy, regions, two_part_regions(part.mesh, r)};
+}
+
+Options counted(int proxies, std::uint64_t seed = 1) {
+    Options o = test::with_proxies(proxies, seed);
+    o.project = false;
+    return o;
+}
+
+// Accuracy ≥ 0.97 on average and ≥ 0.90 on every mesh, no two-part region.
+void expect_corpus_scores(const std::vector<Outcome>& runs, const std::vector<CorpusCase>& corpus) {
+    double sum = 0;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        SCOPED_TRACE(corpus[i].part + " " + corpus[i].variant);
+        EXPECT_GE(runs[i].accuracy, 0.90);
+        EXPECT_EQ(runs[i].two_part, 0);
+        sum += runs[i].accuracy;
+    }
+    EXPECT_GE(sum / runs.size(), 0.97);
+}
+
+}  // namespace
+
+// Each case runs with its own seed, as bench/cad_extraction.cpp does (the numbers in
+// bench/RESULTS.md).
+TEST(CadExtraction, CorpusAtTheTrueCount) {
+    const std::vector<CorpusCase> corpus = cad_corpus();
+    std::vector<Outcome> runs;
+    for (const CorpusCase& c : corpus) {
+        const Part part = make_part(c.part, c.options);
+        runs.push_back(run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed)));
+        EXPECT_EQ(runs.back().regions, static_cast<int>(part.surfaces.size()));
+    }
+    expect_corpus_scores(runs, corpus);
+}
+
+TEST(CadExtraction, CorpusWithTheAutomaticCount) {
+    const std::vector<CorpusCase> corpus = cad_corpus();
+    std::vector<Outcome> runs;
+    for (const CorpusCase& c : corpus) {
+        SCOPED_TRACE(c.part + " " + c.variant);
+        const Part part = make_part(c.part, c.options);
+        runs.push_back(run(part, counted(0, c.options.seed)));
+        const double truth = static_cast<double>(part.surfaces.size());
+        // Within ±15 % of the true count; the irregular slotted block still ends with two
+        // facet strips beside the tangent seams of its slot (bench/RESULTS.md).
+        const double allowed = c.part == "slotted_block" && c.variant == "irregular" ? 0.2 : 0.15;
+        EXPECT_LE(std::abs(runs.back().regions - truth), allowed * truth) << runs.back().regions << " regions";
+    }
+    expect_corpus_scores(runs, corpus);
+}
+
+TEST(CadExtraction, ThinPlateFacesAreTwoPlanesAndToleranceRunsAreValid) {
+    // A plate 0.5 % of its size thick: its two sides are two plane regions facing away
+    // from each other, at the automatic count and under a tolerance alike.
+    PartOptions pose;
+    pose.random_pose = true, pose.seed = 7;
+    const Part plate = make_part("thin_plate", pose);
+    for (const double tolerance : {0.0, 0.002, 0.005}) {
+        SCOPED_TRACE(tolerance);
+        Options o = counted(0);
+        o.lloyd.tolerance = tolerance;
+        const Result r = test::approximate(plate.mesh, o);
+        EXPECT_EQ(two_part_regions(plate.mesh, r), 0);
+        const PartitionScore score = score_partition(plate, r.face_labels, static_cast<int>(r.proxies.size()));
+        std::set<int> sides;
+        for (const ProxyResult& p : r.proxies)
+            if (score.face_of[p.id] >= 0 && plate.surfaces[score.face_of[p.id]].type == QuadricType::plane &&
+                p.area > 1.0 && p.type == QuadricType::plane)
+                sides.insert(p.id);
+        EXPECT_EQ(sides.size(), 2u);
+        EXPECT_GE(score.accuracy, 0.97);
+    }
+    for (const std::string name : {"box_boss_hole", "flange"}) {
+        Options o = counted(0);
+        o.lloyd.tolerance = 0.002;
+        const Part part = make_part(name, pose);
+        const Result r = test::approximate(part.mesh, o);
+        EXPECT_EQ(two_part_regions(part.mesh, r), 0) << name;
+        EXPECT_GE(score_partition(part, r.face_labels, static_cast<int>(r.proxies.size())).accuracy, 0.95) << name;
+    }
+}
+
+TEST(CadExtraction, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
+    const std::pair<const char*, int> meshes[] = {
+        {"fandisk.off", 22}, {"joint.off", 30},          {"csg.off", 10},          {"block.off", 20},
+        {"casting.off", 30}, {"pinion.off", 30},         {"cylinder_capped.off", 3}, {"abc_pipe_junction.stl", 20},
+        {"abc_round_cap.stl", 15}, {"mask.off", 6},      {"chess_pawn.stl", 12},   {"rocker_arm.obj", 20}};
+    for (const auto& [name, count] : meshes) {
+        SCOPED_TRACE(name);
+        const Mesh mesh = read_mesh_file(test::shared_mesh(name));
+        const Result r = test::approximate(mesh, counted(count));
+        // A count is a maximum: a mesh whose every region its noise explains stops earlier.
+        EXPECT_LE(static_cast<int>(r.proxies.size()), count);
+        EXPECT_EQ(two_part_regions(mesh, r), 0);
+        for (const ProxyResult& p : r.proxies)
+            EXPECT_TRUE(p.type != QuadricType::intersecting_planes && p.type != QuadricType::parallel_planes &&
+                        p.type != QuadricType::empty)
+                << "region " << p.id << " is " << type_name(p.type);
+    }
+}
+
+TEST(CadExtraction, TheSeedPicksSeedFacesAndTheSameSeedGivesTheSameLabels) {
+    const Mesh bunny = read_mesh_file(test::shared_mesh("bunny_closed.off"));
+    const Result a = test::approximate(bunny, counted(20)), again = test::approximate(bunny, counted(20));
+    EXPECT_EQ(a.labels, again.labels);
+    Options other = counted(20);
+    other.lloyd.seed = 2;
+    const Result b = test::approximate(bunny, other);
+    EXPECT_NE(a.labels, b.labels);
+    // On a CAD part the seed moves seeds within their charts, not the faces found.
+    PartOptions pose;
+    pose.random_pose = true;
+    const Part part = make_part("box_boss_hole", pose);
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        Options o = counted(9);
+        o.lloyd.seed = seed;
+        EXPECT_GE(run(part, o).accuracy, 0.97) << "seed " << seed;
+    }
+}
+
+TEST(CadExtraction, ThePapersInitialisationStaysSelectableAndValid) {
+    PartOptions pose;
+    pose.random_pose = true;
+    const Part part = make_part("l_bracket", pose);
+    Options paper = counted(9), features = counted(9);
+    paper.lloyd.init = Initialization::paper;
+    const Result p = test::approximate(part.mesh, paper), f = test::approximate(part.mesh, features);
+    EXPECT_NE(p.lloyd_labels, f.lloyd_labels);
+    EXPECT_EQ(two_part_regions(part.mesh, p), 0);
+    EXPECT_EQ(p.proxies.size(), 9u);
+}
+
+TEST(CadExtraction, NoProxyStaysStuckOnAHandfulOfFaces) {
+    // The box with a boss at its true count once kept a proxy on three faces while the
+    // boss's side and top shared one region. Every region now holds a true face.
+    for (const bool irregular : {false, true}) {
+        PartOptions o;
+        o.random_pose = true, o.irregular = irregular, o.seed = 11;
+        const Part part = make_part("box_boss_hole", o);
+        const Result r = test::approximate(part.mesh, counted(static_cast<int>(part.surfaces.size())));
+        const PartitionScore score = score_partition(part, r.face_labels, static_cast<int>(r.proxies.size()));
+        for (const ProxyResult& p : r.proxies) {
+            EXPECT_GE(score.face_of[p.id], 0) << "region " << p.id << " (" << p.faces << " faces) matches no face";
+            EXPECT_GT(p.faces, 20) << "region " << p.id;
+        }
+    }
+}
