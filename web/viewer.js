@@ -6,7 +6,7 @@
 //   const viewer = createViewer(element, { proxies: 20, example: 'turned_part' });
 //   viewer.addEventListener('result', (e) => console.log(e.detail.report));
 //   await viewer.load(file);        // File/Blob/URL string/ArrayBuffer (+ name)
-//   await viewer.run({ proxies: 12 });
+//   await viewer.run({ proxies: 12 });  // or 'auto'
 //
 // The root element carries data-state (idle | loading | running | done | error) and
 // data-proxies; events: state, loaded, progress, result, error (detail: the data).
@@ -78,7 +78,9 @@ export function createViewer(root, options = {}) {
   addStylesheet();
   const api = new EventTarget();
   const settings = {
-    proxies: options.proxies ?? 20,
+    proxies: options.proxies === 'auto' ? 20 : options.proxies ?? 20,
+    // Grow until more proxies no longer pay: the default for files the user brings.
+    automatic: options.proxies === 'auto',
     useTolerance: options.tolerance !== undefined,
     tolerance: options.tolerance ?? 0.002,
     rings: options.rings ?? 1,
@@ -392,7 +394,14 @@ export function createViewer(root, options = {}) {
 
   // ---- controls ----------------------------------------------------------------------
   const gui = new GUI({ container: guiHost, title: 'Approximation' });
-  gui.add(settings, 'proxies', 1, 200, 1).name('proxies');
+  // A file the user brings runs with the automatic count until they choose a count.
+  let countChosen = false;
+  gui.add(settings, 'automatic').name('automatic count').onChange(() => { countChosen = true; });
+  gui.add(settings, 'proxies', 1, 200, 1).name('proxies').onChange(() => {
+    countChosen = true;
+    settings.automatic = false;
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  });
   gui.add(settings, 'useTolerance').name('stop on tolerance');
   gui.add(settings, 'tolerance', 1e-4, 0.05, 1e-4).name('tolerance (RMS)');
   gui.add(settings, 'rings', 1, 5, 1).name('smoothing rings');
@@ -501,15 +510,21 @@ export function createViewer(root, options = {}) {
   }
 
   async function run(overrides = {}) {
-    Object.assign(settings, overrides);
+    // proxies: a count, or 'auto' for the automatic count.
+    const { proxies, ...rest } = overrides;
+    if (proxies !== undefined) {
+      settings.automatic = proxies === 'auto';
+      if (proxies !== 'auto') settings.proxies = proxies;
+    }
+    Object.assign(settings, rest);
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
     return guarded(async (current) => {
       if (!mesh) throw new Error('open a mesh first');
       clearError();
       forgetResult();
       setState('running');
-      const target = settings.useTolerance ? 0 : settings.proxies;
-      const runOptions = { proxies: target, rings: settings.rings, lambda: settings.lambda, seed: settings.seed,
+      const target = settings.useTolerance || settings.automatic ? 0 : settings.proxies;
+      const runOptions = { proxies: target || 'auto', rings: settings.rings, lambda: settings.lambda, seed: settings.seed,
         smooth: settings.smooth, refit: settings.refit };
       if (settings.useTolerance) runOptions.tolerance = settings.tolerance;
       surface.userData.kind = null;
@@ -562,7 +577,7 @@ export function createViewer(root, options = {}) {
 
   openButton.addEventListener('click', () => fileInput.click());
   fileInput.addEventListener('change', () => {
-    if (fileInput.files[0]) load(fileInput.files[0]).then(() => root.dataset.state !== 'error' && run());
+    if (fileInput.files[0]) load(fileInput.files[0]).then(() => root.dataset.state !== 'error' && run(countChosen ? {} : { automatic: true }));
     fileInput.value = '';
   });
   examples.addEventListener('change', () => {
@@ -590,7 +605,7 @@ export function createViewer(root, options = {}) {
     const file = e.dataTransfer?.files?.[0];
     if (!file) return;
     e.preventDefault();
-    load(file).then(() => root.dataset.state !== 'error' && run());
+    load(file).then(() => root.dataset.state !== 'error' && run(countChosen ? {} : { automatic: true }));
   };
   dropTarget.addEventListener('dragover', onDragOver);
   dropTarget.addEventListener('dragleave', onDragLeave);

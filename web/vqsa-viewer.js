@@ -1,4 +1,4 @@
-// <vqsa-viewer src="model.obj" proxies="20" rings="1" lambda="1"></vqsa-viewer>
+// <vqsa-viewer src="model.obj" proxies="20" rings="1" lambda="1"></vqsa-viewer>  (proxies="auto": automatic count)
 // A custom element around createViewer(): it approximates `src` (or `example`) when
 // attached, re-runs when `proxies` changes, and exposes the viewer as `.viewer`.
 import { createViewer } from './viewer.js';
@@ -14,10 +14,11 @@ class VqsaViewerElement extends HTMLElement {
   connectedCallback() {
     if (this.#viewer) return;
     const number = (name) => (this.hasAttribute(name) ? Number(this.getAttribute(name)) : undefined);
+    const count = (value) => (value === 'auto' ? 'auto' : Number(value));
     this.#viewer = createViewer(this, {
       src: this.getAttribute('src') ?? undefined,
       example: this.getAttribute('src') ? undefined : this.getAttribute('example') ?? 'turned_part',
-      proxies: number('proxies'), rings: number('rings'), lambda: number('lambda'), seed: number('seed'),
+      proxies: this.hasAttribute('proxies') ? count(this.getAttribute('proxies')) : undefined, rings: number('rings'), lambda: number('lambda'), seed: number('seed'),
     });
   }
 
@@ -29,7 +30,7 @@ class VqsaViewerElement extends HTMLElement {
   attributeChangedCallback(name, previous, value) {
     if (!this.#viewer || previous === value) return;
     if (name === 'src' && value) this.#viewer.load(value).then(() => this.#viewer.run());
-    if (name === 'proxies' && value) this.#viewer.run({ proxies: Number(value) });
+    if (name === 'proxies' && value) this.#viewer.run({ proxies: value === 'auto' ? 'auto' : Number(value) });
   }
 }
 

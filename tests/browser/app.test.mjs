@@ -171,3 +171,24 @@ test('the embed page renders and runs', async () => {
   assert.deepEqual(consoleErrors, []);
   await embed.close();
 });
+
+test('a dropped CAD mesh runs with the automatic count until a count is chosen', async () => {
+  const fresh = await openPage('index.html');
+  await waitFor(fresh, ['done']);
+  assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '7');  // the example's own count
+  await drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' });
+  await waitFor(fresh, ['running']);
+  await waitFor(fresh, ['done']);
+  // A capped cylinder is three surfaces: its side and two disks.
+  assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '3');
+  assert.equal(await fresh.isChecked('.lil-gui .controller.boolean input >> nth=0'), true);
+  await fresh.screenshot({ path: join(shots, 'app-automatic.png') });
+  await setProxies(fresh, 2);
+  await drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' });
+  await waitFor(fresh, ['running']);
+  await waitFor(fresh, ['done']);
+  assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '2');
+  assert.equal(await fresh.isChecked('.lil-gui .controller.boolean input >> nth=0'), false);
+  assert.deepEqual(consoleErrors, []);
+  await fresh.close();
+});

@@ -30,7 +30,9 @@ function assertSameResult(wasm, native) {
       assert.ok(Math.abs(c - n) <= 1e-9 * Math.max(1e-3, Math.abs(n)), `proxy ${i} C${k}: ${c} vs ${n}`);
     });
   });
-  assert.ok(Math.abs(wasm.metrics.rms - native.metrics.rms) <= 1e-9 * native.metrics.rms);
+  // Relative to the size; exact fits (a capsule) leave rounding, where the two libms differ.
+  assert.ok(Math.abs(wasm.metrics.rms - native.metrics.rms) <= 1e-9 * native.metrics.rms + 1e-14,
+    `RMS ${wasm.metrics.rms} vs ${native.metrics.rms}`);
 }
 
 for (const [input, proxies] of [['fandisk.off', 22], ['example:capsule', 3]]) {
@@ -62,7 +64,7 @@ test('bad input rejects with the C++ message and the session stays usable', () =
     const mesh = session.loadExample('closed_cylinder');  // usable right after
     assert.equal(mesh.faces > 0, true);
   }
-  assert.throws(() => session.start({ proxies: 0 }), /give a proxy count, a tolerance, or both|proxies/);
+  assert.throws(() => session.start({ proxies: -1 }), /proxies/);
   assert.throws(() => session.start({ proxies: 3, bogus: 1 }), /unknown option 'bogus'/);
   assert.throws(() => new vqsa.Session().stepFor(10), /start an approximation first/);
   const result = wasmRun(session, { proxies: 3 });
