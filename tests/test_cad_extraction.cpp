@@ -128,6 +128,17 @@ TEST(CadExtraction, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
     }
 }
 
+TEST(CadExtraction, SharedCadMeshesWithTheAutomaticCountHaveNoTwoPartRegion) {
+    for (const char* name : {"fandisk.off", "joint.off", "block.off", "casting.off", "pinion.off", "cylinder_capped.off",
+                             "abc_pipe_junction.stl", "abc_round_cap.stl"}) {
+        SCOPED_TRACE(name);
+        const Mesh mesh = read_mesh_file(test::shared_mesh(name));
+        const Result r = test::approximate(mesh, counted(0));
+        EXPECT_EQ(two_part_regions(mesh, r), 0);
+        EXPECT_TRUE(r.stop_reason == StopReason::fitted || r.stop_reason == StopReason::no_gain);
+    }
+}
+
 TEST(CadExtraction, TheSeedPicksSeedFacesAndTheSameSeedGivesTheSameLabels) {
     const Mesh bunny = read_mesh_file(test::shared_mesh("bunny_closed.off"));
     const Result a = test::approximate(bunny, counted(20)), again = test::approximate(bunny, counted(20));

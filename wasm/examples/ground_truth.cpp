@@ -100,7 +100,7 @@ int two_part_regions(const Mesh& mesh, const Result& result) {
             if (result.face_labels[t] != p.id) continue;
             const Triangle& tri = mesh.triangles[t];
             const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
-            const int side = part_of(p.shape, (a + b + c) / 3);
+            const int side = part_of(p.shape, (a + b + c) / 3, 2 * p.type_rms);
             if (side != 0) area[side > 0 ? 0 : 1] += 0.5 * (b - a).cross(c - a).norm();
         }
         count += std::min(area[0], area[1]) > 0.01 * (area[0] + area[1]);

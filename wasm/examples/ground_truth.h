@@ -31,7 +31,8 @@ std::vector<CorpusCase> cad_corpus();
 PartitionScore score_partition(const Part& part, const std::vector<int>& labels, int regions);
 
 // Regions of a result whose reported type has two parts and whose faces lie on both
-// (each part holding more than 1 % of the region's area): what a valid result never has.
+// (each part holding more than 1 % of the region's area, faces within twice the type's
+// RMS of where the parts separate counting on neither): what a valid result never has.
 int two_part_regions(const Mesh& mesh, const Result& result);
 
 // The assignment maximising Σ weight[i][assignment[i]] over distinct columns (-1 where a
