@@ -408,7 +408,7 @@ export function createViewer(root, options = {}) {
   gui.add(settings, 'lambda', 0, 20, 0.1).name('smoothing λ');
   gui.add(settings, 'seed', 0, 1000, 1).name('seed');
   gui.add(settings, 'smooth').name('smooth boundaries');
-  gui.add(settings, 'refit').name('refit special types');
+  gui.add(settings, 'refit').name('choose types');
   const display = gui.addFolder('Display');
   display.add(settings, 'view', Object.keys(VIEWS)).name('view').onChange(showView);
   display.add(settings, 'colouring', Object.keys(COLOURINGS)).name('colour').onChange(() => { paint(); fillTable(); });
