@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <unordered_map>
 #include <stdexcept>
@@ -574,14 +575,25 @@ bool Lloyd::on_two_parts(const Quadric& q, const Parts& p, double area) const {
     return p.both(area, options_.split_fraction);
 }
 
-bool Lloyd::union_on_two_parts(const Fit& fit, const Moments& united, int a, int b) const {
+Lloyd::Union Lloyd::fit_union(int a, int b) const {
+    Union u;
+    u.moments = proxies_[a].moments;
+    add_to(u.moments, proxies_[b].moments);
+    u.fit = fit_proxy(u.moments, proxies_[a].faces + proxies_[b].faces, options_);
+    return u;
+}
+
+Classification Lloyd::classify_union(const Union& u) const {
+    const RegionFrame frame = region_frame(u.moments);
+    return classify(u.fit.quadric, frame.center, frame.radius, options_.classify);
+}
+
+bool Lloyd::union_on_two_parts(const Union& u, int a, int b) const {
     // As for a region (invalid): a union whose quadric has two parts is fine while its
     // faces lie on one of them.
-    const RegionFrame frame = region_frame(united);
-    const Classification c = classify(fit.quadric, frame.center, frame.radius, options_.classify);
-    const double area = std::max(united[0], 1e-300);
-    const double margin = 2 * std::sqrt(std::max(fit.mean_squared, (region_noise_[a] + region_noise_[b]) / area));
-    return on_two_parts(fit.quadric, parts(fit.quadric, c, margin, a, b), area);
+    const double area = std::max(u.moments[0], 1e-300);
+    const double margin = 2 * std::sqrt(std::max(u.fit.mean_squared, (region_noise_[a] + region_noise_[b]) / area));
+    return on_two_parts(u.fit.quadric, parts(u.fit.quadric, classify_union(u), margin, a, b), area);
 }
 
 bool Lloyd::absorb(int region, int excluded) {
@@ -591,13 +603,11 @@ bool Lloyd::absorb(int region, int excluded) {
     for (const auto& [a, b] : adjacent_regions(model_, labels_)) {
         const int other = a == region ? b : b == region ? a : -1;
         if (other < 0 || other == excluded) continue;
-        Moments united = proxies_[other].moments;
-        add_to(united, proxies_[region].moments);
-        const Fit fit = fit_proxy(united, proxies_[other].faces + proxies_[region].faces, options_);
-        const double cost = united[0] * fit.mean_squared - proxies_[other].area * proxies_[other].fit_error;
-        if (cost >= best_cost || union_on_two_parts(fit, united, region, other) || !one_surface(fit.quadric, region, other))
+        const Union u = fit_union(other, region);
+        const double cost = u.moments[0] * u.fit.mean_squared - proxies_[other].area * proxies_[other].fit_error;
+        if (cost >= best_cost || union_on_two_parts(u, region, other) || !one_surface(u.fit.quadric, region, other))
             continue;
-        best_cost = cost, best = other, best_fit = fit;
+        best_cost = cost, best = other, best_fit = u.fit;
     }
     if (best < 0) return false;
     merge_pair(best, region, best_fit);
@@ -668,27 +678,30 @@ bool Lloyd::split_invalid() {
     return true;
 }
 
-bool Lloyd::merge_cheapest() {
+bool Lloyd::merge_least_cost(const std::function<bool(int, int)>& eligible,
+                             const std::function<bool(const Union&, int, int)>& acceptable) {
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     double best_cost = std::numeric_limits<double>::infinity();
     int best_pair = -1;
     Fit best_fit;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-        const Proxy &a = proxies_[pairs[k].first], &b = proxies_[pairs[k].second];
-        Moments united = a.moments;
-        add_to(united, b.moments);
-        const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
-        const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
-        if (cost >= best_cost) continue;
-        const RegionFrame region = region_frame(united);
-        const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (has_two_parts(type) || faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second))
-            continue;
-        best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
+        const auto [i, j] = pairs[k];
+        if (!eligible(i, j)) continue;
+        const Union u = fit_union(i, j);
+        const double cost = u.moments[0] * u.fit.mean_squared - proxies_[i].area * proxies_[i].fit_error -
+                            proxies_[j].area * proxies_[j].fit_error;
+        if (cost >= best_cost || !acceptable(u, i, j)) continue;
+        best_cost = cost, best_pair = static_cast<int>(k), best_fit = u.fit;
     }
     if (best_pair < 0) return false;
     merge_pair(pairs[best_pair].first, pairs[best_pair].second, best_fit);
     return true;
+}
+
+bool Lloyd::merge_cheapest() {
+    return merge_least_cost([](int, int) { return true; }, [&](const Union& u, int a, int b) {
+        return !has_two_parts(classify_union(u).type) && !faces_both_ways(u.fit.quadric, a, b);
+    });
 }
 
 bool Lloyd::merge_same_surface() {
@@ -710,15 +723,11 @@ bool Lloyd::merge_same_surface() {
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         const Proxy &a = proxies_[i], &b = proxies_[j];
-        Moments united = a.moments;
-        add_to(united, b.moments);
-        const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
-        const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = united[0] * fit.mean_squared;
-        if (!(united_error <= 1.25 * parts + 1e-12 * united[0] || united_error <= noise[i] + noise[j])) continue;
-        const RegionFrame region = region_frame(united);
-        const QuadricType type = classify(fit.quadric, region.center, region.radius, options_.classify).type;
-        if (has_two_parts(type)) continue;
-        candidates.push_back({united_error - parts, static_cast<int>(k), fit});
+        const Union u = fit_union(i, j);
+        const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = u.moments[0] * u.fit.mean_squared;
+        if (!(united_error <= 1.25 * parts + 1e-12 * u.moments[0] || united_error <= noise[i] + noise[j])) continue;
+        if (has_two_parts(classify_union(u).type)) continue;
+        candidates.push_back({united_error - parts, static_cast<int>(k), u.fit});
     }
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
@@ -797,26 +806,9 @@ bool Lloyd::bends_through_creases(const Quadric& q, int a, int b) const {
 }
 
 bool Lloyd::merge_handful() {
-    const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
-    double best_cost = std::numeric_limits<double>::infinity();
-    int best_pair = -1;
-    Fit best_fit;
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-        const Proxy &a = proxies_[pairs[k].first], &b = proxies_[pairs[k].second];
-        if (std::min(a.faces, b.faces) >= options_.min_quadric_faces) continue;
-        Moments united = a.moments;
-        add_to(united, b.moments);
-        const Fit fit = fit_proxy(united, a.faces + b.faces, options_);
-        const double cost = united[0] * fit.mean_squared - a.area * a.fit_error - b.area * b.fit_error;
-        if (cost >= best_cost) continue;
-        if (union_on_two_parts(fit, united, pairs[k].first, pairs[k].second) ||
-            faces_both_ways(fit.quadric, pairs[k].first, pairs[k].second))
-            continue;
-        best_cost = cost, best_pair = static_cast<int>(k), best_fit = fit;
-    }
-    if (best_pair < 0) return false;
-    merge_pair(pairs[best_pair].first, pairs[best_pair].second, best_fit);
-    return true;
+    return merge_least_cost(
+        [&](int a, int b) { return std::min(proxies_[a].faces, proxies_[b].faces) < options_.min_quadric_faces; },
+        [&](const Union& u, int a, int b) { return !union_on_two_parts(u, a, b) && !faces_both_ways(u.fit.quadric, a, b); });
 }
 
 bool Lloyd::repair_stuck() {

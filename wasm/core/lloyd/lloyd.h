@@ -10,6 +10,7 @@
 #include "lloyd/flooding.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace vqsa {
@@ -176,8 +177,19 @@ private:
     Parts parts(const Quadric& q, const Classification& c, double margin, int a, int b) const;
     // Whether faces of that area lie on two parts (enough of them to count; see invalid).
     bool on_two_parts(const Quadric& q, const Parts& p, double area) const;
-    // Whether the union of a and b, fitted by `fit`, would be an invalid region.
-    bool union_on_two_parts(const Fit& fit, const Moments& united, int a, int b) const;
+    // Regions a and b fitted as one.
+    struct Union {
+        Moments moments;
+        Fit fit;
+    };
+    Union fit_union(int a, int b) const;
+    Classification classify_union(const Union& u) const;
+    // Whether the union of a and b would be an invalid region.
+    bool union_on_two_parts(const Union& u, int a, int b) const;
+    // Merges the adjacent pair, among those `eligible`, whose union costs least and is
+    // `acceptable`.
+    bool merge_least_cost(const std::function<bool(int, int)>& eligible,
+                          const std::function<bool(const Union&, int, int)>& acceptable);
     bool invalid(int proxy, Parts* parts = nullptr) const;
     bool split_invalid();
     // The adjacent pair whose union fit costs least, if its union is valid.
