@@ -13,14 +13,9 @@ namespace vqsa {
 
 namespace {
 
-double weighted_rms(const Samples& s, const Quadric& q) {
+double taubin_rms(const Samples& s, const Quadric& q) {
     const double a = q.hessian_norm();
-    double sum = 0;
-    for (std::size_t i = 0; i < s.points.size(); ++i) {
-        const double d = taubin_distance(q, a, s.points[i]);
-        sum += s.weights[i] * d * d;
-    }
-    return std::sqrt(sum / s.total_weight);
+    return weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, a, p); });
 }
 
 bool on_two_parts(const Classification& c, const Samples& s, double margin) {
@@ -43,9 +38,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         candidates.push_back(only);
         return {only, std::nullopt};
     }
-    Vec3 center = Vec3::Zero();
-    for (std::size_t i = 0; i < s.points.size(); ++i) center += s.weights[i] * s.points[i];
-    center /= s.total_weight;
+    const Vec3 center = weighted_centroid(s);
     double spread = 0;
     for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - center).squaredNorm();
     const double radius = std::sqrt(spread / s.total_weight) + 1e-300;
@@ -54,7 +47,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         if (!fit || !std::isfinite(fit->rms)) return;
         // Every candidate measured alike (Taubin's distance is below the true one, more so
         // away from the surface): a fair contest.
-        candidates.push_back({fit->shape.type, fit->quadric, fit->shape, weighted_rms(s, fit->quadric),
+        candidates.push_back({fit->shape.type, fit->quadric, fit->shape, taubin_rms(s, fit->quadric),
                               degrees_of_freedom(fit->shape.type), true});
     };
     add_special(fit_plane_geometric(s));
@@ -89,7 +82,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         g.quadric = normalized(q);
         g.shape = classify(q, center, radius, options.classify);
         g.type = q.is_plane() ? QuadricType::plane : g.shape.type;
-        g.rms = weighted_rms(s, q);
+        g.rms = taubin_rms(s, q);
         g.parameters = degrees_of_freedom(g.type);
         const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
         const bool usable = g.type != QuadricType::empty && !pair &&

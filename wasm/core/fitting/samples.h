@@ -3,6 +3,8 @@
 
 #include "io/mesh.h"
 
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace vqsa {
@@ -19,5 +21,22 @@ struct Samples {
         total_weight += w;
     }
 };
+
+inline Vec3 weighted_centroid(const Samples& s) {
+    Vec3 c = Vec3::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i) c += s.weights[i] * s.points[i];
+    return c / s.total_weight;
+}
+
+// √(Σ wᵢ d(pᵢ)² / Σ wᵢ) for a distance function d.
+template <class Distance>
+double weighted_rms(const Samples& s, const Distance& distance) {
+    double sum = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const double d = distance(s.points[i]);
+        sum += s.weights[i] * d * d;
+    }
+    return std::sqrt(sum / s.total_weight);
+}
 
 }  // namespace vqsa

@@ -7,7 +7,6 @@
 #include <Eigen/Dense>
 
 #include <cmath>
-#include <functional>
 
 namespace vqsa {
 
@@ -21,19 +20,13 @@ Eigen::Matrix3d frame_with_axis(const Vec3& axis) {
     return r;
 }
 
-double weighted_rms(const Samples& s, const std::function<double(const Vec3&)>& distance) {
-    double sum = 0;
-    for (std::size_t i = 0; i < s.points.size(); ++i) {
-        const double d = distance(s.points[i]);
-        sum += s.weights[i] * d * d;
-    }
-    return std::sqrt(sum / s.total_weight);
-}
-
-Vec3 weighted_centroid(const Samples& s) {
-    Vec3 c = Vec3::Zero();
-    for (std::size_t i = 0; i < s.points.size(); ++i) c += s.weights[i] * s.points[i];
-    return c / s.total_weight;
+// The fit that is `shape`: its quadric and its RMS orthogonal distance to the samples.
+SpecialFit fit_of(const Classification& shape, const Samples& s) {
+    SpecialFit fit;
+    fit.shape = shape;
+    fit.quadric = special_quadric(shape);
+    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(shape, p); });
+    return fit;
 }
 
 }  // namespace
@@ -95,13 +88,11 @@ std::optional<SpecialFit> fit_plane_geometric(const Samples& s) {
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     for (std::size_t i = 0; i < s.points.size(); ++i) cov += s.weights[i] * (s.points[i] - c) * (s.points[i] - c).transpose();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    SpecialFit fit;
-    fit.shape.type = QuadricType::plane;
-    fit.shape.center = c;
-    fit.shape.rotation = frame_with_axis(eig.eigenvectors().col(0));
-    fit.quadric = special_quadric(fit.shape);
-    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
-    return fit;
+    Classification shape;
+    shape.type = QuadricType::plane;
+    shape.center = c;
+    shape.rotation = frame_with_axis(eig.eigenvectors().col(0));
+    return fit_of(shape, s);
 }
 
 std::optional<SpecialFit> fit_sphere_geometric(const Samples& s) {
@@ -127,13 +118,11 @@ std::optional<SpecialFit> fit_sphere_geometric(const Samples& s) {
             return [c, r](const Vec3& p) { return (p - c).norm() - r; };
         },
         std::sqrt(r2));
-    SpecialFit fit;
-    fit.shape.type = QuadricType::sphere;
-    fit.shape.center = theta.head<3>();
-    fit.shape.radius = std::abs(theta[3]);
-    fit.quadric = special_quadric(fit.shape);
-    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
-    return fit;
+    Classification shape;
+    shape.type = QuadricType::sphere;
+    shape.center = theta.head<3>();
+    shape.radius = std::abs(theta[3]);
+    return fit_of(shape, s);
 }
 
 std::optional<SpecialFit> fit_cylinder_geometric(const Samples& s, const Vec3& axis_guess) {
@@ -173,14 +162,12 @@ std::optional<SpecialFit> fit_cylinder_geometric(const Samples& s, const Vec3& a
         std::sqrt(r2));
     Vec3 point, axis;
     unpack(theta, point, axis);
-    SpecialFit fit;
-    fit.shape.type = QuadricType::cylinder;
-    fit.shape.rotation = frame_with_axis(axis);
-    fit.shape.center = point + (origin - point).dot(axis) * axis;  // the axis point nearest the region
-    fit.shape.radius = std::abs(theta[4]);
-    fit.quadric = special_quadric(fit.shape);
-    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
-    return fit;
+    Classification shape;
+    shape.type = QuadricType::cylinder;
+    shape.rotation = frame_with_axis(axis);
+    shape.center = point + (origin - point).dot(axis) * axis;  // the axis point nearest the region
+    shape.radius = std::abs(theta[4]);
+    return fit_of(shape, s);
 }
 
 std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_guess, const Vec3& apex_guess) {
@@ -226,14 +213,12 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
     unpack(theta, a, u);
     const double alpha = std::atan(theta[5]);
     if (!(alpha > 1e-4 && alpha < M_PI / 2 - 1e-4)) return std::nullopt;
-    SpecialFit fit;
-    fit.shape.type = QuadricType::cone;
-    fit.shape.center = a;
-    fit.shape.rotation = frame_with_axis(u);
-    fit.shape.half_angle = alpha;
-    fit.quadric = special_quadric(fit.shape);
-    fit.rms = weighted_rms(s, [&](const Vec3& p) { return special_distance(fit.shape, p); });
-    return fit;
+    Classification shape;
+    shape.type = QuadricType::cone;
+    shape.center = a;
+    shape.rotation = frame_with_axis(u);
+    shape.half_angle = alpha;
+    return fit_of(shape, s);
 }
 
 std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3& axis_guess) {
