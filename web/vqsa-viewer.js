@@ -3,6 +3,9 @@
 // attached, re-runs when `proxies` changes, and exposes the viewer as `.viewer`.
 import { createViewer } from './viewer.js';
 
+// A proxy count attribute: a number, or 'auto' for the automatic count.
+const count = (value) => (value === 'auto' ? 'auto' : Number(value));
+
 class VqsaViewerElement extends HTMLElement {
   static observedAttributes = ['src', 'proxies'];
   #viewer = null;
@@ -14,11 +17,11 @@ class VqsaViewerElement extends HTMLElement {
   connectedCallback() {
     if (this.#viewer) return;
     const number = (name) => (this.hasAttribute(name) ? Number(this.getAttribute(name)) : undefined);
-    const count = (value) => (value === 'auto' ? 'auto' : Number(value));
     this.#viewer = createViewer(this, {
       src: this.getAttribute('src') ?? undefined,
       example: this.getAttribute('src') ? undefined : this.getAttribute('example') ?? 'turned_part',
-      proxies: this.hasAttribute('proxies') ? count(this.getAttribute('proxies')) : undefined, rings: number('rings'), lambda: number('lambda'), seed: number('seed'),
+      proxies: this.hasAttribute('proxies') ? count(this.getAttribute('proxies')) : undefined,
+      rings: number('rings'), lambda: number('lambda'), seed: number('seed'),
     });
   }
 
@@ -30,7 +33,7 @@ class VqsaViewerElement extends HTMLElement {
   attributeChangedCallback(name, previous, value) {
     if (!this.#viewer || previous === value) return;
     if (name === 'src' && value) this.#viewer.load(value).then(() => this.#viewer.run());
-    if (name === 'proxies' && value) this.#viewer.run({ proxies: value === 'auto' ? 'auto' : Number(value) });
+    if (name === 'proxies' && value) this.#viewer.run({ proxies: count(value) });
   }
 }
 

@@ -168,6 +168,14 @@ test('the embed page renders and runs', async () => {
   await embed.waitForFunction(() => /quadrics/.test(document.getElementById('summary').textContent));
   assert.equal(await embed.getAttribute('vqsa-viewer', 'data-proxies'), '20');
   await embed.screenshot({ path: join(shots, 'embed.png'), fullPage: true });
+  // proxies="auto" re-runs with the automatic count.
+  const stop = await embed.evaluate(() => new Promise((resolve) => {
+    const element = document.querySelector('vqsa-viewer');
+    element.viewer.addEventListener('result', (e) => resolve(e.detail.stop_reason), { once: true });
+    element.setAttribute('proxies', 'auto');
+  }));
+  assert.ok(['fitted', 'no_gain'].includes(stop), `stopped: ${stop}`);
+  assert.equal(await embed.isChecked('vqsa-viewer .lil-gui .controller.boolean input >> nth=0'), true);
   assert.deepEqual(consoleErrors, []);
   await embed.close();
 });
