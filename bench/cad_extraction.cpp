@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -30,6 +31,12 @@ std::set<std::string> list(const std::string& text) {
 // True type × found type over the regions matched to a true face, at the true count.
 std::map<std::string, std::map<std::string, int>> confusion;
 std::map<std::string, std::pair<int, int>> typed, typed_all;  // variant → (right, all): clean matches, all matches
+
+struct Worst {
+    int patches = 0;
+    double axis = -1, radius = -1, half_angle = -1;  // degrees, relative, degrees (-1: no such parameter)
+};
+std::map<std::string, std::map<std::string, Worst>> worst;  // variant → true type → worst errors
 
 struct Outcome {
     int proxies = 0;
@@ -74,6 +81,15 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
             right_all += truth == found, ++all_all;
             if (!score.clean_match[p.id]) continue;
             ++confusion[truth][found];
+            if (truth == found) {
+                // The worst parameter error per variant and true type, over the patches typed right.
+                const vqsa::ParameterError e = vqsa::parameter_error(part.surfaces[face], p.shape);
+                Worst& w = worst[variant][truth];
+                ++w.patches;
+                if (!std::isnan(e.axis_degrees)) w.axis = std::max(w.axis, e.axis_degrees);
+                if (!std::isnan(e.radius_relative)) w.radius = std::max(w.radius, e.radius_relative);
+                if (!std::isnan(e.half_angle_degrees)) w.half_angle = std::max(w.half_angle, e.half_angle_degrees);
+            }
             if (truth != found && verbose)
                 std::fprintf(stderr, "  %s: region %d (%d faces) is %s rms %.3e, runner-up %s rms %.3e\n", variant.c_str(), p.id,
                              p.faces, found.c_str(), p.type_rms, p.runner_up ? vqsa::type_name(p.runner_up->type) : "-",
@@ -165,6 +181,17 @@ int main(int argc, char** argv) {
                     variant.c_str(), counts.first, counts.second, 100.0 * counts.first / std::max(1, counts.second),
                     typed_all[variant].first, typed_all[variant].second,
                     100.0 * typed_all[variant].first / std::max(1, typed_all[variant].second));
+    std::printf("\nWorst parameter error over the patches typed right (axis: plane normal, cylinder or cone axis):\n\n");
+    std::printf("| variant | type | patches | axis ° | radius %% | half-angle ° |\n|---|---|---:|---:|---:|---:|\n");
+    auto cell = [](double value, double scale) {
+        char text[32] = "-";
+        if (value >= 0) std::snprintf(text, sizeof text, "%.3f", scale * value);
+        return std::string(text);
+    };
+    for (const auto& [variant, types] : worst)
+        for (const auto& [type, w] : types)
+            std::printf("| %s | %s | %d | %s | %s | %s |\n", variant.c_str(), type.c_str(), w.patches, cell(w.axis, 1).c_str(),
+                        cell(w.radius, 100).c_str(), cell(w.half_angle, 1).c_str());
     if (!json_path.empty()) std::ofstream(json_path) << rows.dump(1) << "\n";
     return 0;
 }

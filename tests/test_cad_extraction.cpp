@@ -4,6 +4,7 @@
 // the seed and the initialisations.
 #include "cad_parts.h"
 #include "ground_truth.h"
+#include "fitting/special_fit.h"
 #include "io/mesh_io.h"
 #include "test_support.h"
 
@@ -11,6 +12,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <set>
 
 using namespace vqsa;
@@ -21,12 +23,16 @@ struct Outcome {
     double accuracy;
     int regions;
     int two_part;
+    Result result;
+    PartitionScore score;
 };
 
 Outcome run(const Part& part, const Options& options) {
-    const Result r = test::approximate(part.mesh, options);
+    Result r = test::approximate(part.mesh, options);
     const int regions = static_cast<int>(r.proxies.size());
-    return {score_partition(part, r.face_labels, regions).accuracy, regions, two_part_regions(part.mesh, r)};
+    PartitionScore score = score_partition(part, r.face_labels, regions);
+    const int two_part = two_part_regions(part.mesh, r);
+    return {score.accuracy, regions, two_part, std::move(r), std::move(score)};
 }
 
 Options counted(int proxies, std::uint64_t seed = 1) {
@@ -47,6 +53,38 @@ void expect_corpus_scores(const std::vector<Outcome>& runs, const std::vector<Co
     EXPECT_GE(sum / runs.size(), 0.97);
 }
 
+// On every patch matched cleanly to its true face (sharing 90 % of the area of each):
+// counts the type right or wrong, and of the right ones checks the parameters — plane
+// normal within 0.1°, radius within 0.5 % (1 % under noise), axes within 1°, cone
+// half-angle within 0.5°. Under noise a plane's normal is held to what the noise allows:
+// within a quarter more than the orthogonal fit to its true face's vertices.
+void expect_types_and_parameters(const Part& part, const std::string& variant, const Outcome& run,
+                                 std::pair<int, int>& typed) {
+    const bool noisy = variant == "noisy";
+    for (const ProxyResult& p : run.result.proxies) {
+        const int face = run.score.face_of[p.id];
+        if (face < 0 || !run.score.clean_match[p.id]) continue;
+        const TrueSurface& truth = part.surfaces[face];
+        ++typed.second;
+        if (p.type != truth.type) continue;
+        ++typed.first;
+        SCOPED_TRACE(std::string("region ") + std::to_string(p.id) + " " + type_name(p.type));
+        const ParameterError e = parameter_error(truth, p.shape);
+        if (truth.type == QuadricType::plane) {
+            double limit = 0.1;
+            if (noisy) {
+                const ParameterError oracle = parameter_error(truth, fit_plane_geometric(true_face_vertices(part, face))->shape);
+                limit = std::max(limit, 1.25 * oracle.axis_degrees);
+            }
+            EXPECT_LE(e.axis_degrees, limit);
+        } else if (!std::isnan(e.axis_degrees)) {
+            EXPECT_LE(e.axis_degrees, 1.0);
+        }
+        if (!std::isnan(e.radius_relative)) EXPECT_LE(e.radius_relative, noisy ? 0.01 : 0.005);
+        if (!std::isnan(e.half_angle_degrees)) EXPECT_LE(e.half_angle_degrees, 0.5);
+    }
+}
+
 }  // namespace
 
 // Each case runs with its own seed, as bench/cad_extraction.cpp does (the numbers in
@@ -54,12 +92,42 @@ void expect_corpus_scores(const std::vector<Outcome>& runs, const std::vector<Co
 TEST(CadExtraction, CorpusAtTheTrueCount) {
     const std::vector<CorpusCase> corpus = cad_corpus();
     std::vector<Outcome> runs;
+    std::map<std::string, std::pair<int, int>> typed;  // variant → (typed right, patches)
     for (const CorpusCase& c : corpus) {
         const Part part = make_part(c.part, c.options);
         runs.push_back(run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed)));
         EXPECT_EQ(runs.back().regions, static_cast<int>(part.surfaces.size()));
+        expect_types_and_parameters(part, c.variant, runs.back(), typed[c.variant]);
     }
     expect_corpus_scores(runs, corpus);
+    // Patches typed right: ≥ 95 % on clean and irregular meshes, ≥ 90 % under noise.
+    for (const auto& [variant, count] : typed) {
+        SCOPED_TRACE(variant);
+        EXPECT_GE(count.first, (variant == "noisy" ? 0.90 : 0.95) * count.second) << count.first << " of " << count.second;
+    }
+}
+
+// The facet strip along a tangent seam (a leg of the L-bracket beside its fillet, the
+// slot's walls beside its round ends) goes to the curved side, and the flat side is a
+// plane, not a parabolic cylinder or a sphere bent into the strip. (Not yet on the
+// irregular L-bracket: there the upper leg's region reaches several coarse facets into the
+// fillet, deeper than a strip, and is typed a cylinder; bench/RESULTS.md.)
+TEST(CadExtraction, TangentSeamStripsGoToTheCurvedSide) {
+    for (const CorpusCase& c : cad_corpus()) {
+        if (c.variant == "noisy" || (c.part != "l_bracket" && c.part != "slotted_block")) continue;
+        if (c.part == "l_bracket" && c.variant == "irregular") continue;
+        SCOPED_TRACE(c.part + " " + c.variant);
+        const Part part = make_part(c.part, c.options);
+        const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed));
+        EXPECT_GE(o.accuracy, 0.98);
+        for (const ProxyResult& p : o.result.proxies) {
+            const int face = o.score.face_of[p.id];
+            ASSERT_GE(face, 0);
+            if (part.surfaces[face].type == QuadricType::plane && o.score.clean_match[p.id]) {
+                EXPECT_EQ(p.type, QuadricType::plane) << "region " << p.id << " is " << type_name(p.type);
+            }
+        }
+    }
 }
 
 TEST(CadExtraction, CorpusWithTheAutomaticCount) {
@@ -70,10 +138,7 @@ TEST(CadExtraction, CorpusWithTheAutomaticCount) {
         const Part part = make_part(c.part, c.options);
         runs.push_back(run(part, counted(0, c.options.seed)));
         const double truth = static_cast<double>(part.surfaces.size());
-        // Within ±15 % of the true count; the irregular slotted block still ends with two
-        // facet strips beside the tangent seams of its slot (bench/RESULTS.md).
-        const double allowed = c.part == "slotted_block" && c.variant == "irregular" ? 0.2 : 0.15;
-        EXPECT_LE(std::abs(runs.back().regions - truth), allowed * truth) << runs.back().regions << " regions";
+        EXPECT_LE(std::abs(runs.back().regions - truth), 0.15 * truth) << runs.back().regions << " regions";
     }
     expect_corpus_scores(runs, corpus);
 }

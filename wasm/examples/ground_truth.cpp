@@ -1,6 +1,7 @@
 #include "ground_truth.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace vqsa {
@@ -46,6 +47,28 @@ std::vector<int> best_assignment(const std::vector<std::vector<double>>& weight)
     for (int j = 1; j <= n; ++j)
         if (p[j] >= 1 && p[j] <= rows && j <= cols) assignment[p[j] - 1] = j - 1;
     return assignment;
+}
+
+ParameterError parameter_error(const TrueSurface& truth, const Classification& found) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    constexpr double degrees = 180 / 3.14159265358979323846;
+    ParameterError e{nan, nan, nan};
+    const QuadricType t = truth.type;
+    if (t == QuadricType::plane || t == QuadricType::cylinder || t == QuadricType::cone)
+        e.axis_degrees = std::acos(std::min(1.0, std::abs(truth.axis.normalized().dot(found.axis().normalized())))) * degrees;
+    if (t == QuadricType::sphere || t == QuadricType::cylinder) e.radius_relative = std::abs(found.radius - truth.radius) / truth.radius;
+    if (t == QuadricType::cone) e.half_angle_degrees = std::abs(found.half_angle - truth.half_angle) * degrees;
+    return e;
+}
+
+Samples true_face_vertices(const Part& part, int face) {
+    std::vector<char> used(part.mesh.vertices.size(), 0);
+    Samples out;
+    for (std::size_t t = 0; t < part.face.size(); ++t)
+        if (part.face[t] == face)
+            for (int v : part.mesh.triangles[t])
+                if (!used[v]) used[v] = 1, out.add(part.mesh.vertices[v], 1.0);
+    return out;
 }
 
 std::vector<CorpusCase> cad_corpus() {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "cad_parts.h"
+#include "fitting/samples.h"
 #include "pipeline/result.h"
 
 #include <string>
@@ -34,6 +35,18 @@ PartitionScore score_partition(const Part& part, const std::vector<int>& labels,
 // (each part holding more than 1 % of the region's area, faces within twice the type's
 // RMS of where the parts separate counting on neither): what a valid result never has.
 int two_part_regions(const Mesh& mesh, const Result& result);
+
+// How far a region's parameters (`found`, in the part's frame) lie from its true face's,
+// for a region of the true type; NaN where the type has no such parameter.
+struct ParameterError {
+    double axis_degrees;     // plane normal; cylinder and cone axis (either direction)
+    double radius_relative;  // sphere, cylinder: |r − r₀| / r₀
+    double half_angle_degrees;  // cone
+};
+ParameterError parameter_error(const TrueSurface& truth, const Classification& found);
+
+// Each vertex of a true face once, of weight one: what a fit to exactly its faces sees.
+Samples true_face_vertices(const Part& part, int face);
 
 // The assignment maximising Σ weight[i][assignment[i]] over distinct columns (-1 where a
 // row gets none): the Hungarian method, O(n³) on the square completion.

@@ -294,9 +294,15 @@ void Lloyd::decide() {
 
     const int count = static_cast<int>(proxies_.size());
     const int target = options_.proxies;
-    // Valid at every stop: a region on two parts of its quadric is split first, whatever the count.
-    if (splits_left_ > 0 && split_invalid()) {
+    // Valid at every stop: a region on two parts of its quadric is split first, whatever the
+    // count. A split from a partition already split from once has come round in a cycle
+    // (the split-off part merged back, Lloyd regrew it: a facet strip beside a tangent
+    // plane): the stop's ensure_valid settles it without Lloyd.
+    const std::uint64_t state = partition_hash();
+    if (splits_left_ > 0 && std::find(split_states_.begin(), split_states_.end(), state) == split_states_.end() &&
+        split_invalid()) {
         --splits_left_;
+        split_states_.push_back(state);
         return start_operation(Operation::split);
     }
     if (target > 0 && count > target) {
@@ -374,6 +380,12 @@ void Lloyd::decide() {
     }
     if (added == 0) return stop(StopReason::exhausted);
     start_operation(Operation::insert);
+}
+
+std::uint64_t Lloyd::partition_hash() const {
+    std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a over the labels and the proxy count
+    for (int l : labels_) h = (h ^ static_cast<std::uint32_t>(l)) * 0x100000001b3ull;
+    return (h ^ proxies_.size()) * 0x100000001b3ull;
 }
 
 double Lloyd::noise_energy(int proxy) const {
@@ -637,9 +649,11 @@ void Lloyd::ensure_valid() {
         const Classification c = classify_proxy(chosen);
         const double margin = part_margin(chosen);
         const int added = static_cast<int>(proxies_.size());
-        add_proxy(chosen_parts.best[1]);
+        // The smaller part leaves: it is the one a neighbour may take.
+        const int minor = chosen_parts.weight[0] < chosen_parts.weight[1] ? 0 : 1, minor_side = minor == 0 ? 1 : -1;
+        add_proxy(chosen_parts.best[minor]);
         for (int f = 0; f < model_.face_count(); ++f)
-            if (labels_[f] == chosen && side_of(proxies_[chosen].quadric, f, c, margin) < 0) labels_[f] = added;
+            if (labels_[f] == chosen && side_of(proxies_[chosen].quadric, f, c, margin) == minor_side) labels_[f] = added;
         std::vector<char> changed(proxies_.size(), 0);
         changed[chosen] = changed[added] = 1;
         refit_regions(model_, labels_, options_, proxies_, changed);

@@ -159,6 +159,7 @@ private:
     void start_operation(Operation operation);
     void stop(StopReason reason);
     void evaluate(const std::vector<char>* changed = nullptr);
+    std::uint64_t partition_hash() const;
     bool automatic() const { return options_.proxies == 0 && options_.tolerance == 0; }
     // Σ A (noise_factor · roughness)² over a region: the energy the noise explains.
     double noise_energy(int proxy) const;
@@ -247,6 +248,7 @@ private:
     int iterations_ = 0;
     int teleports_left_ = 0;
     int splits_left_ = 0;
+    std::vector<std::uint64_t> split_states_;  // partitions a split was made from (partition_hash)
     int repairs_left_ = 0;
     bool iterating_ = false;
     bool teleport_pending_ = false;

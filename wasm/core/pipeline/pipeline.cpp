@@ -5,6 +5,7 @@
 #include "lloyd/lloyd.h"
 #include "post/graph_cut.h"
 #include "post/project.h"
+#include "post/seams.h"
 
 #include <chrono>
 #include <cmath>
@@ -125,18 +126,24 @@ public:
             state_.choices.clear();
             if (!options_.refit) return false;
             state_.choices.resize(count);
-            samples_ = region_vertices();
+            region_faces_.assign(count, {});
+            for (int f = 0; f < model_.face_count(); ++f) region_faces_[state_.labels[f]].push_back(f);
         }
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
             ModelSelectionOptions selection;
             selection.classify = options_.lloyd.classify;
-            state_.choices[next_] = select_model(samples_[next_], p.quadric, selection);
+            state_.choices[next_] = select_model(vertex_samples(model_, region_faces_[next_]), p.quadric, selection);
             p.quadric = state_.choices[next_].chosen.quadric;
-            samples_[next_] = Samples();
+            region_faces_[next_] = {};
             ++next_;
             return true;
         }
+        SeamOptions seams;
+        seams.selection.classify = options_.lloyd.classify;
+        seams.fit = options_.lloyd.fit;
+        simplify_seams(model_, state_.labels, state_.proxies, state_.choices, state_.crease.empty() ? nullptr : &state_.crease,
+                       seams);
         FaceErrors evaluator;
         std::vector<double> errors;
         state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
@@ -144,24 +151,10 @@ public:
     }
 
 private:
-    // Every vertex of every region once, all of one weight: under noise each vertex is
-    // one measurement, whatever the size of its faces.
-    std::vector<Samples> region_vertices() const {
-        std::vector<std::uint64_t> uses;  // region << 32 | vertex
-        uses.reserve(3 * model_.triangles.size());
-        for (int f = 0; f < model_.face_count(); ++f)
-            for (int v : model_.triangles[f]) uses.push_back(std::uint64_t(state_.labels[f]) << 32 | std::uint32_t(v));
-        std::sort(uses.begin(), uses.end());
-        uses.erase(std::unique(uses.begin(), uses.end()), uses.end());
-        std::vector<Samples> out(state_.proxies.size());
-        for (std::uint64_t u : uses) out[u >> 32].add(model_.points[u & 0xffffffffu], 1.0);
-        return out;
-    }
-
     const Model& model_;
     const Options& options_;
     State& state_;
-    std::vector<Samples> samples_;  // per region
+    std::vector<std::vector<int>> region_faces_;
     bool started_ = false;
     int next_ = 0;
 };

@@ -1,0 +1,43 @@
+// Tangent seams settled by simplicity (docs/METHOD.md §6): the faces along a seam that
+// two surfaces explain alike go to the side that lets its neighbour be a simpler type.
+#pragma once
+
+#include "fitting/fit.h"
+#include "fitting/model_selection.h"
+#include "geometry/model.h"
+#include "lloyd/lloyd.h"
+
+#include <vector>
+
+namespace vqsa {
+
+struct SeamOptions {
+    // A face is explained by a region's surface when its mean squared distance to it is
+    // at most this factor times the region's own.
+    double tolerance = 1.25;
+    // At most this fraction of a region's area leaves it, at most this many faces deep
+    // (a quad of the tessellation is two triangles).
+    double max_fraction = 0.1;
+    int rings = 3;
+    // Vertices a first, cheap model selection sees (see seams.cpp).
+    std::size_t screening_samples = 400;
+    ModelSelectionOptions selection;
+    FitOptions fit;
+};
+
+// Where a facet strip beside a tangent seam (a plane next to a fillet, a slot's wall next
+// to its round end) went to the flat side, the flat side's quadric bends into it and model
+// selection calls the plane a parabolic cylinder or a sphere: both fits are exact, and
+// the distances cannot tell. Each region not of the simplest type gives each neighbour
+// (across non-crease edges) the faces next to it that the neighbour's surface explains,
+// when without them it selects a type of fewer parameters and the neighbour keeps its
+// type: the same fit, fewer parameters. `choices` (from select_model, per region) and
+// `proxies` (quadric, moments, faces, area) are updated for the regions that change.
+// `crease`: per dual-graph link, optional. Returns the number of faces moved.
+int simplify_seams(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
+                   std::vector<ModelChoice>& choices, const std::vector<char>* crease, const SeamOptions& options);
+
+// Each vertex of the faces once, of weight one (what select_model expects).
+Samples vertex_samples(const Model& model, const std::vector<int>& faces);
+
+}  // namespace vqsa
