@@ -365,6 +365,9 @@ export function createViewer(root, options = {}) {
     if (p) {
       const lines = [`region ${p.id}: ${p.type.replaceAll('_', ' ')}${p.special_fit ? ' (refitted)' : ''}`,
         `${p.faces} faces, RMS ${format(p.metrics?.rms ?? 0)} of the diagonal`,
+        // How clear the type choice was: the chosen type's fit to the region's vertices
+        // against the best fit of another type.
+        ...(p.runner_up ? [`type fit RMS ${format(p.type_rms)}; runner-up ${p.runner_up.type.replaceAll('_', ' ')}, RMS ${format(p.runner_up.rms)}`] : []),
         ...Object.entries(p.params).map(([k, v]) => `${k}: ${Array.isArray(v[0]) ? v.map(vector).join(' ') : Array.isArray(v) ? vector(v) : format(v)}`),
         `f = ${p.coefficients.map((c) => format(c)).join(', ')}`];
       detail.append(...lines.map((l) => element('div', { text: l })));

@@ -109,7 +109,10 @@ test('views: heat map and types render after a run', async () => {
   await page.selectOption('.lil-gui select >> nth=1', 'By quadric type');
   assert.match(await page.textContent('.vqsa-legend'), /plane/);
   await page.hover('.vqsa-table tr[data-region="1"]');
-  assert.match(await page.textContent('.vqsa-detail'), /region 1/);
+  const detail = await page.textContent('.vqsa-detail');
+  assert.match(detail, /region 1/);
+  // The inspector shows how clear the type choice was.
+  assert.match(detail, /type fit RMS [0-9.e+-]+; runner-up [a-z ]+, RMS [0-9.e+-]+/);
   await page.screenshot({ path: join(shots, 'app-types.png') });
 });
 
