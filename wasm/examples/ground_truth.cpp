@@ -118,15 +118,18 @@ int two_part_regions(const Mesh& mesh, const Result& result) {
     int count = 0;
     for (const ProxyResult& p : result.proxies) {
         if (!has_two_parts(p.type)) continue;
-        double area[2] = {0, 0};
+        PartWeights parts;  // by area
+        double total = 0;
         for (std::size_t t = 0; t < result.face_labels.size(); ++t) {
             if (result.face_labels[t] != p.id) continue;
             const Triangle& tri = mesh.triangles[t];
             const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+            const double area = 0.5 * (b - a).cross(c - a).norm();
+            total += area;
             const int side = part_of(p.shape, (a + b + c) / 3, 2 * p.type_rms);
-            if (side != 0) area[side > 0 ? 0 : 1] += 0.5 * (b - a).cross(c - a).norm();
+            if (side != 0) parts.weight[side > 0 ? 0 : 1] += area, ++parts.count[side > 0 ? 0 : 1];
         }
-        count += std::min(area[0], area[1]) > 0.01 * (area[0] + area[1]);
+        count += parts.both(total, 0.01);
     }
     return count;
 }

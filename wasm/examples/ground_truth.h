@@ -32,8 +32,9 @@ std::vector<CorpusCase> cad_corpus();
 PartitionScore score_partition(const Part& part, const std::vector<int>& labels, int regions);
 
 // Regions of a result whose reported type has two parts and whose faces lie on both
-// (each part holding more than 1 % of the region's area, faces within twice the type's
-// RMS of where the parts separate counting on neither): what a valid result never has.
+// (each part holding 1 % of the region's area and three of its faces, as PartWeights
+// counts them; faces within twice the type's RMS of where the parts separate counting on
+// neither): what a valid result never has.
 int two_part_regions(const Mesh& mesh, const Result& result);
 
 // How far a region's parameters (`found`, in the part's frame) lie from its true face's,

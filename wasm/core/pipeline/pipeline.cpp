@@ -40,8 +40,7 @@ using State = Pipeline::State;
 
 class LloydStage : public PipelineStage {
 public:
-    LloydStage(const Model& model, const LloydOptions& options, State& state)
-        : model_(model), lloyd_(model, options), state_(state) {}
+    LloydStage(const Model& model, const LloydOptions& options, State& state) : lloyd_(model, options), state_(state) {}
     Stage id() const override { return Stage::lloyd; }
     double fraction() const override { return lloyd_.fraction(); }
     const std::vector<int>& labels() const { return lloyd_.labels(); }
@@ -62,7 +61,6 @@ public:
     }
 
 private:
-    const Model& model_;
     Lloyd lloyd_;
     State& state_;
 };
