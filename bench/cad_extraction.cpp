@@ -68,11 +68,11 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
     Outcome o;
     o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.proxies = static_cast<int>(r.proxies.size());
-    o.accuracy = vqsa::score_partition(part, r.face_labels, o.proxies).accuracy;
+    const vqsa::PartitionScore score = vqsa::score_partition(part, r.face_labels, o.proxies);
+    o.accuracy = score.accuracy;
     o.two_part = vqsa::two_part_regions(part.mesh, r);
     o.stop = vqsa::stop_reason_name(r.stop_reason);
     if (!variant.empty()) {
-        const vqsa::PartitionScore score = vqsa::score_partition(part, r.face_labels, o.proxies);
         for (const vqsa::ProxyResult& p : r.proxies) {
             const int face = score.face_of[p.id];
             if (face < 0) continue;
@@ -100,7 +100,6 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
     }
     if (!dump_dir.empty()) std::ofstream(dump_dir + "/" + name + ".glb", std::ios::binary) << vqsa::export_glb(part.mesh, r);
     if (verbose) {
-        const vqsa::PartitionScore score = vqsa::score_partition(part, r.face_labels, o.proxies);
         std::fprintf(stderr, "%s: %d proxies, stopped %s, accuracy %.4f\n", name.c_str(), o.proxies, o.stop.c_str(), o.accuracy);
         for (const vqsa::ProxyResult& p : r.proxies) {
             const int face = score.face_of[p.id];

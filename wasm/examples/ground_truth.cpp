@@ -62,13 +62,10 @@ ParameterError parameter_error(const TrueSurface& truth, const Classification& f
 }
 
 Samples true_face_vertices(const Part& part, int face) {
-    std::vector<char> used(part.mesh.vertices.size(), 0);
-    Samples out;
+    std::vector<int> faces;
     for (std::size_t t = 0; t < part.face.size(); ++t)
-        if (part.face[t] == face)
-            for (int v : part.mesh.triangles[t])
-                if (!used[v]) used[v] = 1, out.add(part.mesh.vertices[v], 1.0);
-    return out;
+        if (part.face[t] == face) faces.push_back(static_cast<int>(t));
+    return vertex_samples(part.mesh.vertices, part.mesh.triangles, faces);
 }
 
 std::vector<CorpusCase> cad_corpus() {

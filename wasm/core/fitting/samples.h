@@ -9,8 +9,8 @@
 
 namespace vqsa {
 
-// Weighted points standing for a region: each face's three vertices and barycentre,
-// each weighted by a quarter of its area (the samples of the triangle error, §1).
+// Weighted points standing for a region, for the orthogonal-distance fits and model
+// selection (in the pipeline: its vertices, vertex_samples).
 struct Samples {
     std::vector<Vec3> points;
     std::vector<double> weights;
@@ -21,6 +21,11 @@ struct Samples {
         total_weight += w;
     }
 };
+
+// Each vertex of the faces once, of weight one: under noise each vertex is one
+// measurement, whatever the size of its faces (what model selection fits).
+Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                       const std::vector<int>& faces);
 
 inline Vec3 weighted_centroid(const Samples& s) {
     Vec3 c = Vec3::Zero();

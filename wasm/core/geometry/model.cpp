@@ -113,6 +113,12 @@ Model make_model(const Mesh& mesh) {
     return model;
 }
 
+Moments moments_of(const Model& model, const std::vector<int>& faces) {
+    Moments sum{};
+    for (int f : faces) add_to(sum, model.moments[f]);
+    return sum;
+}
+
 std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels) {
     std::vector<std::pair<int, int>> pairs;
     for (int f = 0; f < model.face_count(); ++f)

@@ -37,6 +37,9 @@ struct Model {
 
 Model make_model(const Mesh& mesh);
 
+// Σ of the faces' moments.
+Moments moments_of(const Model& model, const std::vector<int>& faces);
+
 // Pairs of labels (a < b) of adjacent faces, sorted: the region adjacency of a labelling.
 std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels);
 

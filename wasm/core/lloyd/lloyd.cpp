@@ -147,8 +147,7 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     FaceErrors own;
     for (int c = 0; c < features_.chart_count; ++c) {
         if (static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
-        Moments sum{};
-        for (int f : chart_faces_[c]) add_to(sum, model_.moments[f]);
+        const Moments sum = moments_of(model_, chart_faces_[c]);
         if (!(sum[0] > 0)) continue;
         own.reset(model_, {fit_proxy(sum, static_cast<int>(chart_faces_[c].size()), options_).quadric});
         for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
@@ -457,16 +456,19 @@ int Lloyd::insert_into_charts(int count) {
     int added = 0;
     for (int c : misfit_charts()) {
         if (added == count) break;
-        // A random face of the chart that seeds no proxy yet (two seeds on one face would
-        // leave one proxy without a region).
-        const std::vector<int>& faces = chart_faces_[c];
-        std::size_t k = rng_.below(faces.size());
-        for (std::size_t tries = 0; tries < faces.size() && is_seed(faces[k]); ++tries) k = (k + 1) % faces.size();
-        if (is_seed(faces[k])) continue;
-        add_proxy(faces[k]);
-        ++added;
+        added += seed_at_random(chart_faces_[c]);
     }
     return added;
+}
+
+bool Lloyd::seed_at_random(const std::vector<int>& faces) {
+    // A random face that seeds no proxy yet (two seeds on one face would leave one proxy
+    // without a region).
+    std::size_t k = rng_.below(faces.size());
+    for (std::size_t tries = 0; tries < faces.size() && is_seed(faces[k]); ++tries) k = (k + 1) % faces.size();
+    if (is_seed(faces[k])) return false;
+    add_proxy(faces[k]);
+    return true;
 }
 
 std::vector<std::vector<int>> Lloyd::misfit_clusters() const {
@@ -474,13 +476,9 @@ std::vector<std::vector<int>> Lloyd::misfit_clusters() const {
     // Faces whose (filtered) normal is off their region's surface normal by more than the
     // crease angle lie on another surface, whatever the distances say (the sides of a
     // plate thinner than the noise).
-    const double cos_limit = std::cos(options_.features.crease_angle * M_PI / 180);
     const int n = model_.face_count();
     std::vector<char> off(n, 0);
-    for (int f = 0; f < n; ++f) {
-        const Vec3 g = proxies_[labels_[f]].quadric.gradient(model_.barycentres[f]);
-        off[f] = g.norm() > 0 && std::abs(features_.normals[f].dot(g)) < cos_limit * g.norm();
-    }
+    for (int f = 0; f < n; ++f) off[f] = off_normal(proxies_[labels_[f]].quadric, f);
     std::vector<std::vector<int>> clusters;
     std::vector<char> seen(n, 0);
     const DualGraph& g = model_.graph;
@@ -505,11 +503,7 @@ int Lloyd::insert_into_clusters(int count) {
     int added = 0;
     for (const std::vector<int>& faces : misfit_clusters()) {
         if (added == count) break;
-        std::size_t k = rng_.below(faces.size());
-        for (std::size_t tries = 0; tries < faces.size() && is_seed(faces[k]); ++tries) k = (k + 1) % faces.size();
-        if (is_seed(faces[k])) continue;
-        add_proxy(faces[k]);
-        ++added;
+        added += seed_at_random(faces);
     }
     return added;
 }
@@ -613,21 +607,11 @@ bool Lloyd::union_on_two_parts(const Union& u, int a, int b) const {
 }
 
 bool Lloyd::absorb(int region, int excluded) {
-    double best_cost = std::numeric_limits<double>::infinity();
-    int best = -1;
-    Fit best_fit;
-    for (const auto& [a, b] : adjacent_regions(model_, labels_)) {
-        const int other = a == region ? b : b == region ? a : -1;
-        if (other < 0 || other == excluded) continue;
-        const Union u = fit_union(other, region);
-        const double cost = u.moments[0] * u.fit.mean_squared - proxies_[other].area * proxies_[other].fit_error;
-        if (cost >= best_cost || union_on_two_parts(u, region, other) || !one_surface(u.fit.quadric, region, other))
-            continue;
-        best_cost = cost, best = other, best_fit = u.fit;
-    }
-    if (best < 0) return false;
-    merge_pair(best, region, best_fit);
-    return true;
+    // The region's own error is the same for every pair: the cheapest union is the one
+    // merge_least_cost finds.
+    return merge_least_cost(
+        [&](int a, int b) { return (a == region || b == region) && a != excluded && b != excluded; },
+        [&](const Union& u, int a, int b) { return !union_on_two_parts(u, a, b) && one_surface(u.fit.quadric, a, b); });
 }
 
 void Lloyd::ensure_valid() {
@@ -728,10 +712,6 @@ bool Lloyd::merge_same_surface() {
     // part is judged alone, so that a small region's misfit does not hide in a large
     // region's noise.
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
-    const int count = static_cast<int>(proxies_.size());
-    const double k2 = options_.noise_factor * options_.noise_factor;
-    std::vector<double> noise(count, 0);
-    for (int i = 0; i < count; ++i) noise[i] = k2 * region_noise_[i];
     struct Candidate {
         double cost;
         int pair;
@@ -743,7 +723,7 @@ bool Lloyd::merge_same_surface() {
         const Proxy &a = proxies_[i], &b = proxies_[j];
         const Union u = fit_union(i, j);
         const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = u.moments[0] * u.fit.mean_squared;
-        if (!(united_error <= 1.25 * parts + 1e-12 * u.moments[0] || united_error <= noise[i] + noise[j])) continue;
+        if (!(united_error <= 1.25 * parts + 1e-12 * u.moments[0] || united_error <= noise_energy(i) + noise_energy(j))) continue;
         if (has_two_parts(classify_union(u).type)) continue;
         candidates.push_back({united_error - parts, static_cast<int>(k), u.fit});
     }
@@ -794,14 +774,18 @@ bool Lloyd::faces_both_ways(const Quadric& q, int a, int b) const {
     return facing[0] * facing[1] < -0.25 * area[0] * area[1];
 }
 
-bool Lloyd::strays(const Quadric& q, int region) const {
+bool Lloyd::off_normal(const Quadric& q, int face) const {
     const double cos_limit = std::cos(options_.features.crease_angle * M_PI / 180);
+    const Vec3 g = q.gradient(model_.barycentres[face]);
+    return g.norm() > 0 && std::abs(features_.normals[face].dot(g)) < cos_limit * g.norm();
+}
+
+bool Lloyd::strays(const Quadric& q, int region) const {
     double off = 0, area = 0;
     for (int f = 0; f < model_.face_count(); ++f) {
         if (labels_[f] != region) continue;
-        const Vec3 g = q.gradient(model_.barycentres[f]);
         area += model_.areas[f];
-        if (g.norm() > 0 && std::abs(features_.normals[f].dot(g)) < cos_limit * g.norm()) off += model_.areas[f];
+        if (off_normal(q, f)) off += model_.areas[f];
     }
     return 2 * off > area;
 }
@@ -836,13 +820,10 @@ bool Lloyd::repair_stuck() {
     int worst = -1, stuck = -1;
     double worst_excess = 0;
     const int handful = std::max(4, model_.face_count() / 1000);
-    std::vector<double> noise(count, 0);
-    const double k2 = options_.noise_factor * options_.noise_factor;
-    for (int f = 0; f < model_.face_count(); ++f) noise[labels_[f]] += k2 * face_noise_[f];
     for (int i = 0; i < count; ++i) {
         const Proxy& p = proxies_[i];
         const double floor = p.area * options_.precision * options_.precision;
-        const double excess = p.error - std::max(noise[i], automatic() ? floor : 0.0);
+        const double excess = p.error - std::max(noise_energy(i), automatic() ? floor : 0.0);
         if (excess > worst_excess) worst_excess = excess, worst = i;
     }
     if (worst < 0) return false;
@@ -851,7 +832,7 @@ bool Lloyd::repair_stuck() {
         if (i == worst || p.faces > handful) continue;
         // Negligible: what it explains (its error were its faces taken by a neighbour) is
         // far below what the worst region leaves unexplained.
-        if (p.error + noise[i] < 0.1 * worst_excess && (stuck < 0 || p.area < proxies_[stuck].area)) stuck = i;
+        if (p.error + noise_energy(i) < 0.1 * worst_excess && (stuck < 0 || p.area < proxies_[stuck].area)) stuck = i;
     }
     if (stuck < 0) return false;
     // Its faces go to the neighbour sharing most edges; a new proxy starts in the worst region.
@@ -863,11 +844,9 @@ bool Lloyd::repair_stuck() {
                 if (labels_[g.neighbor[e]] != stuck) ++shared[labels_[g.neighbor[e]]];
     const int into = static_cast<int>(std::max_element(shared.begin(), shared.end()) - shared.begin());
     if (shared[into] == 0) return false;  // alone in its component: it must stay
-    Moments united = proxies_[into].moments;
-    add_to(united, proxies_[stuck].moments);
-    const Fit fit = fit_proxy(united, proxies_[into].faces + proxies_[stuck].faces, options_);
+    const Union united = fit_union(into, stuck);
     const int worst_after = worst > stuck ? worst - 1 : worst;
-    merge_pair(into, stuck, fit);
+    merge_pair(into, stuck, united.fit);
     const double error = proxies_[worst_after].error;
     proxies_[worst_after].error = std::numeric_limits<double>::infinity();  // the one region insert_farthest takes
     const int added = insert_farthest(1);

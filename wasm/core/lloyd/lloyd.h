@@ -167,6 +167,8 @@ private:
     // Charts without a seed whose faces fit worse than the noise explains, worst first.
     std::vector<int> misfit_charts() const;
     int insert_into_charts(int count);
+    // A proxy seeded at a random face of `faces` that seeds none yet; false if all do.
+    bool seed_at_random(const std::vector<int>& faces);
     // Connected faces (a handful or more) whose normals stray from their region's surface
     // normal by more than the crease angle, largest first.
     std::vector<std::vector<int>> misfit_clusters() const;
@@ -211,7 +213,9 @@ private:
     bool one_surface(const Quadric& q, int a, int b) const;
     // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
     bool faces_both_ways(const Quadric& q, int a, int b) const;
-    // Whether most of a region's faces have normals off q's by more than the crease angle.
+    // Whether a face's (filtered) normal is off q's gradient by more than the crease angle.
+    bool off_normal(const Quadric& q, int face) const;
+    // Whether most of a region's faces are off_normal to q.
     bool strays(const Quadric& q, int region) const;
     // Whether q, fitted to regions a and b, turns through the creases between them (by
     // half the crease angle or more, on half of them): it would be fitting two faces.

@@ -110,7 +110,11 @@ private:
 class RefitStage : public PipelineStage {
 public:
     RefitStage(const Model& model, const Options& options, State& state)
-        : model_(model), options_(options), state_(state) {}
+        : model_(model), options_(options), state_(state) {
+        // One selection for every region and for the seams between them.
+        seams_.selection.classify = options.lloyd.classify;
+        seams_.fit = options.lloyd.fit;
+    }
     Stage id() const override { return Stage::refit; }
     double fraction() const override {
         return state_.proxies.empty() ? 1 : double(next_) / state_.proxies.size();
@@ -129,19 +133,15 @@ public:
         }
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            ModelSelectionOptions selection;
-            selection.classify = options_.lloyd.classify;
-            state_.choices[next_] = select_model(vertex_samples(model_, region_faces_[next_]), p.quadric, selection);
+            state_.choices[next_] =
+                select_model(vertex_samples(model_.points, model_.triangles, region_faces_[next_]), p.quadric, seams_.selection);
             p.quadric = state_.choices[next_].chosen.quadric;
             region_faces_[next_] = {};
             ++next_;
             return true;
         }
-        SeamOptions seams;
-        seams.selection.classify = options_.lloyd.classify;
-        seams.fit = options_.lloyd.fit;
         simplify_seams(model_, state_.labels, state_.proxies, state_.choices, state_.crease.empty() ? nullptr : &state_.crease,
-                       seams);
+                       seams_);
         FaceErrors evaluator;
         std::vector<double> errors;
         state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
@@ -152,6 +152,7 @@ private:
     const Model& model_;
     const Options& options_;
     State& state_;
+    SeamOptions seams_;
     std::vector<std::vector<int>> region_faces_;
     bool started_ = false;
     int next_ = 0;

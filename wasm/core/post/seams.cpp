@@ -8,30 +8,12 @@
 
 namespace vqsa {
 
-Samples vertex_samples(const Model& model, const std::vector<int>& faces) {
-    std::vector<int> vertices;
-    vertices.reserve(3 * faces.size());
-    for (int f : faces)
-        for (int v : model.triangles[f]) vertices.push_back(v);
-    std::sort(vertices.begin(), vertices.end());
-    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-    Samples out;
-    for (int v : vertices) out.add(model.points[v], 1.0);
-    return out;
-}
-
 namespace {
 
 struct Region {
     std::vector<int> faces;
     double error = 0;  // Σ d(t, P) under its chosen surface
 };
-
-Moments moments_of(const Model& model, const std::vector<int>& faces) {
-    Moments sum{};
-    for (int f : faces) add_to(sum, model.moments[f]);
-    return sum;
-}
 
 }  // namespace
 
@@ -62,7 +44,7 @@ int simplify_seams(const Model& model, std::vector<int>& labels, std::vector<Pro
     // seams of a free-form surface change no type, and this tells them cheaply.
     auto select_without = [&](int r, const std::vector<int>& strip) {
         const std::vector<int> rest = faces_without(r, strip);
-        return select_model(thinned(vertex_samples(model, rest), options.screening_samples),
+        return select_model(thinned(vertex_samples(model.points, model.triangles, rest), options.screening_samples),
                             fit_region(moments_of(model, rest), options.fit).quadric, options.selection);
     };
     for (int a = 0; a < count; ++a) {
@@ -113,15 +95,14 @@ int simplify_seams(const Model& model, std::vector<int>& labels, std::vector<Pro
             if (rest.size() < 3) continue;
             const Moments rest_moments = moments_of(model, rest);
             const ModelChoice simpler =
-                select_model(vertex_samples(model, rest), fit_region(rest_moments, options.fit).quadric, options.selection);
+                select_model(vertex_samples(model.points, model.triangles, rest), fit_region(rest_moments, options.fit).quadric, options.selection);
             if (simpler.chosen.parameters >= choices[a].chosen.parameters) continue;
             std::vector<int> grown = regions[b].faces;
             grown.insert(grown.end(), strip.begin(), strip.end());
-            std::sort(grown.begin(), grown.end());
             Moments grown_moments = proxies[b].moments;
             for (int f : strip) add_to(grown_moments, model.moments[f]);
             const ModelChoice kept =
-                select_model(vertex_samples(model, grown), fit_region(grown_moments, options.fit).quadric, options.selection);
+                select_model(vertex_samples(model.points, model.triangles, grown), fit_region(grown_moments, options.fit).quadric, options.selection);
             if (kept.chosen.type != choices[b].chosen.type) continue;
 
             for (int f : strip) labels[f] = b;

@@ -37,7 +37,4 @@ struct SeamOptions {
 int simplify_seams(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
                    std::vector<ModelChoice>& choices, const std::vector<char>* crease, const SeamOptions& options);
 
-// Each vertex of the faces once, of weight one (what select_model expects).
-Samples vertex_samples(const Model& model, const std::vector<int>& faces);
-
 }  // namespace vqsa
