@@ -1,5 +1,5 @@
 // Classification of quadrics into the affine taxonomy, with geometric parameters
-// (ALGORITHM §6). Decisions are made in the frame of the region the quadric stands
+// (docs/METHOD.md §6). Decisions are made in the frame of the region the quadric stands
 // for, so "zero" means negligible at the region's scale.
 #pragma once
 

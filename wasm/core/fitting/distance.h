@@ -1,4 +1,4 @@
-// Taubin's second-order approximate distance and the triangle error (ALGORITHM §1).
+// Taubin's second-order approximate distance and the triangle error (docs/METHOD.md §1).
 #pragma once
 
 #include "fitting/quadric.h"

@@ -1,4 +1,4 @@
-// Fitting a proxy to a region from its moments (ALGORITHM §2).
+// Fitting a proxy to a region from its moments (docs/METHOD.md §1).
 #pragma once
 
 #include "geometry/moments.h"

@@ -27,7 +27,7 @@ struct Quadric {
         return {c[1] + 2 * c[4] * x + c[5] * y + c[6] * z, c[2] + c[5] * x + 2 * c[7] * y + c[8] * z,
                 c[3] + c[6] * x + c[8] * y + 2 * c[9] * z};
     }
-    // ‖A‖ Frobenius: the a' of Taubin's second-order distance (ALGORITHM §1).
+    // ‖A‖ Frobenius: the a' of Taubin's second-order distance (docs/METHOD.md §1).
     double hessian_norm() const {
         return std::sqrt(c[4] * c[4] + c[7] * c[7] + c[9] * c[9] + 0.5 * (c[5] * c[5] + c[6] * c[6] + c[8] * c[8]));
     }

@@ -1,4 +1,4 @@
-// The mesh as the algorithms see it: in the unit frame (ALGORITHM §0), with per-face
+// The mesh as the algorithms see it: in the unit frame (docs/METHOD.md §0), with per-face
 // areas, barycentres and moments computed once, and the dual graph.
 #pragma once
 

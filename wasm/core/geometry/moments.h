@@ -1,5 +1,5 @@
 // Exact surface moments of triangles: the integrals ∫ x^i y^j z^k dA, i+j+k ≤ 4.
-// They are all that quadric fitting needs (ALGORITHM §2): a region's moments are the
+// They are all that quadric fitting needs (docs/METHOD.md §1): a region's moments are the
 // sum of its faces', so refitting costs 35 additions per face and fitting the union
 // of two regions costs one addition of sums.
 #pragma once

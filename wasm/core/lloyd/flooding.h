@@ -1,4 +1,4 @@
-// Distortion-minimising flooding (ALGORITHM §3, after Cohen-Steiner et al. 2004).
+// Distortion-minimising flooding (docs/METHOD.md §2, after Cohen-Steiner et al. 2004).
 #pragma once
 
 #include "fitting/face_errors.h"

@@ -1,5 +1,5 @@
 // Variational quadric shape approximation: Lloyd iteration with progressive proxy
-// insertion, validity splits, merging and teleportation (docs/METHOD.md §3–4).
+// insertion, validity splits, merging and teleportation (docs/METHOD.md §2, §4, §5, §7).
 #pragma once
 
 #include "fitting/classify.h"

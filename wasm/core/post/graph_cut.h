@@ -1,4 +1,4 @@
-// Boundary smoothing by graph cut (ALGORITHM §5).
+// Boundary smoothing by graph cut (docs/METHOD.md §8).
 #pragma once
 
 #include "fitting/face_errors.h"

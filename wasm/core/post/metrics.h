@@ -1,4 +1,4 @@
-// Distance between the input surface and the projected surface (ALGORITHM §8).
+// Distance between the input surface and the projected surface (docs/METHOD.md §10).
 #pragma once
 
 #include "io/mesh.h"

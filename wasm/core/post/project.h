@@ -1,4 +1,4 @@
-// Projection of points and meshes onto proxies (ALGORITHM §7).
+// Projection of points and meshes onto proxies (docs/METHOD.md §9).
 #pragma once
 
 #include "fitting/classify.h"
