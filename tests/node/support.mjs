@@ -3,6 +3,8 @@ import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import assert from 'node:assert/strict';
+import validator from 'gltf-validator';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 export const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -29,4 +31,11 @@ export function triangleRegions(mesh) {
   const regions = [];
   for (let t = 0; t < index.count / 3; ++t) regions.push(ids.getX(index.getX(3 * t)));
   return regions;
+}
+
+// The Khronos validator finds no error in the GLB's bytes.
+export async function validateGlb(bytes, what) {
+  const report = await validator.validateBytes(bytes, { maxIssues: 100 });
+  const errors = report.issues.messages.filter((m) => m.severity === 0);
+  assert.equal(report.issues.numErrors, 0, `${what}: ${JSON.stringify(errors, null, 1)}`);
 }

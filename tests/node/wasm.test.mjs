@@ -7,7 +7,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { test } from 'node:test';
 import { loadVqsa } from '../../wasm/node/load.mjs';
-import { meshes, root, runNativeCli } from './support.mjs';
+import { meshes, readGlb, root, runNativeCli, triangleRegions, validateGlb } from './support.mjs';
 
 const work = mkdtempSync(join(tmpdir(), 'vqsa-wasm-'));
 test.after(() => rmSync(work, { recursive: true, force: true }));
@@ -73,7 +73,7 @@ test('bad input rejects with the C++ message and the session stays usable', () =
   session.delete();
 });
 
-test('npm run cli:wasm writes what npm run cli writes', () => {
+test('npm run cli:wasm writes what npm run cli writes', async () => {
   const outputs = (dir) => ({ report: join(dir, 'r.json'), labels: join(dir, 'l.txt'), projected: join(dir, 'p.off'), glb: join(dir, 'o.glb') });
   const n = outputs(mkdtempSync(join(work, 'n'))), w = outputs(mkdtempSync(join(work, 'w')));
   const args = (o) => [join(meshes, 'csg.off'), '--proxies', '10', '--quiet', '--report', o.report, '--labels', o.labels,
@@ -90,5 +90,8 @@ test('npm run cli:wasm writes what npm run cli writes', () => {
     if (Number.isNaN(b)) assert.equal(t, pn[i]);
     else assert.ok(Math.abs(a - b) <= 1e-9 * Math.max(1, Math.abs(b)), `value ${i}: ${t} vs ${pn[i]}`);
   });
-  assert.ok(readFileSync(w.glb).length > 1000);
+  // The GLB validates and carries the same regions as the native one.
+  await validateGlb(new Uint8Array(readFileSync(w.glb)), 'cli:wasm GLB');
+  const regions = async (f) => triangleRegions((await readGlb(f)).scene.getObjectByName('input'));
+  assert.deepEqual(await regions(w.glb), await regions(n.glb));
 });

@@ -5,6 +5,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -179,9 +180,7 @@ nlohmann::json metadata(BufferWriter& writer, const std::vector<nlohmann::json>&
     };
     nlohmann::json columns = {
         {"type", strings(types)},
-        {"runner_up", strings(runners_up)},
         {"type_rms", {{"values", writer.view(type_rms)}}},
-        {"runner_up_rms", {{"values", writer.view(runner_up_rms)}}},
         {"coefficients", {{"values", writer.view(coefficients)}}},
         {"center", {{"values", writer.view(center)}}},
         {"axis", {{"values", writer.view(axis)}}},
@@ -192,6 +191,13 @@ nlohmann::json metadata(BufferWriter& writer, const std::vector<nlohmann::json>&
         {"area", {{"values", writer.view(area)}}},
         {"rms_error", {{"values", writer.view(rms)}}},
         {"faces", {{"values", writer.view(faces)}}}};
+    // With no runner-up anywhere (types not selected, or regions too small for a second
+    // candidate) the columns are left out: glTF allows no empty buffer view, and a
+    // property the table does not list has no data.
+    if (std::any_of(runners_up.begin(), runners_up.end(), [](const std::string& t) { return !t.empty(); })) {
+        columns["runner_up"] = strings(runners_up);
+        columns["runner_up_rms"] = {{"values", writer.view(runner_up_rms)}};
+    }
     return {{"schema", {{"id", "vqsa"}, {"classes", {{"region", {{"name", "Region"}, {"properties", properties}}}}}}},
             {"propertyTables", {{{"name", "regions"}, {"class", "region"}, {"count", regions.size()}, {"properties", columns}}}}};
 }
