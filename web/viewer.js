@@ -60,17 +60,35 @@ function heat(t) {
   return stops[i].map((v, k) => v + f * (stops[i + 1][k] - v));
 }
 
-const format = (x, digits = 3) => (Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(2) : x.toFixed(digits));
-const vector = (v, digits = 3) => `(${v.map((x) => (Math.abs(x) < 5e-4 ? '0' : format(x, digits))).join(', ')})`;
+// `digits` significant digits whatever the model's size (an r of 0.00123 is not
+// "0.001"), exponents only far from 1, no "-0".
+const format = (x, digits = 4) => {
+  if (!Number.isFinite(x)) return String(x);
+  const a = Math.abs(x);
+  const text = a !== 0 && (a >= 1e5 || a < 1e-3) ? x.toExponential(digits - 1) : x.toPrecision(digits);
+  return Number(text) === 0 ? '0' : text;
+};
+// Components below the last printed digit of the vector's largest are 0: a normal's
+// rounding noise (2.6e-7) is not a direction.
+const vector = (v, digits = 4) => {
+  const largest = Math.max(...v.map(Math.abs));
+  return `(${v.map((x) => (Math.abs(x) < 0.5 * 10 ** -digits * largest ? '0' : format(x, digits))).join(', ')})`;
+};
+const degrees = (radians) => `${((radians * 180) / Math.PI).toFixed(2)}°`;
+// The terms of f = C0 + C1 x + … + C9 z², in the report's order.
+const TERMS = ['', 'x', 'y', 'z', 'x²', 'xy', 'xz', 'y²', 'yz', 'z²'];
+const polynomial = (c) => c.map((v, i) => [v, i]).filter(([v]) => v !== 0)
+  .map(([v, i], k) => `${k === 0 ? (v < 0 ? '−' : '') : v < 0 ? ' − ' : ' + '}${format(Math.abs(v))}${TERMS[i] && ' ' + TERMS[i]}`)
+  .join('') || '0';
 
 function keyParams(p) {
   const q = p.params ?? {};
   switch (p.type) {
-    case 'plane': return `n ${vector(q.normal, 2)}`;
+    case 'plane': return `n ${vector(q.normal, 3)}`;
     case 'sphere': return `r ${format(q.radius)}`;
     case 'cylinder': return `r ${format(q.radius)}`;
-    case 'cone': return `${format((q.half_angle * 180) / Math.PI, 2)}°`;
-    default: return q.semi_axes ? `a ${vector(q.semi_axes, 2)}` : '';
+    case 'cone': return degrees(q.half_angle);
+    default: return q.semi_axes ? `a ${vector(q.semi_axes, 3)}` : '';
   }
 }
 
@@ -157,15 +175,26 @@ export function createViewer(root, options = {}) {
     renderer.setSize(w, h, false);
     camera.aspect = w / h;
     camera.updateProjectionMatrix();
+    requestRender();
   };
   const observer = new ResizeObserver(resize);
   observer.observe(canvasHost);
   let alive = true;
-  renderer.setAnimationLoop(() => {
-    if (!alive) return;
-    controls.update();
-    renderer.render(scene, camera);
-  });
+  // Render on demand: one frame per change (a camera move, new colours or geometry), and
+  // more only while the controls' damping is still moving the camera. An idle page draws
+  // nothing.
+  let frameRequested = false;
+  function requestRender() {
+    if (frameRequested || !alive) return;
+    frameRequested = true;
+    requestAnimationFrame(() => {
+      frameRequested = false;
+      if (!alive) return;
+      if (controls.update()) requestRender();
+      renderer.render(scene, camera);
+    });
+  }
+  controls.addEventListener('change', requestRender);
 
   // ---- state -------------------------------------------------------------------------
   let client = new VqsaClient();
@@ -223,6 +252,7 @@ export function createViewer(root, options = {}) {
   function useGeometry(geometry) {
     surface.geometry.dispose();
     surface.geometry = wire.geometry = geometry;
+    requestRender();
   }
 
   function frame() {
@@ -233,6 +263,7 @@ export function createViewer(root, options = {}) {
     camera.near = distance / 100;
     camera.far = distance * 10;
     camera.updateProjectionMatrix();
+    requestRender();
   }
 
   function proxyType(region) {
@@ -268,6 +299,7 @@ export function createViewer(root, options = {}) {
     }
     colour.needsUpdate = true;
     drawLegend();
+    requestRender();
   }
 
   function heatScale() {
@@ -368,8 +400,9 @@ export function createViewer(root, options = {}) {
         // How clear the type choice was: the chosen type's fit to the region's vertices
         // against the best fit of another type.
         ...(p.runner_up ? [`type fit RMS ${format(p.type_rms)}; runner-up ${p.runner_up.type.replaceAll('_', ' ')}, RMS ${format(p.runner_up.rms)}`] : []),
-        ...Object.entries(p.params).map(([k, v]) => `${k}: ${Array.isArray(v[0]) ? v.map(vector).join(' ') : Array.isArray(v) ? vector(v) : format(v)}`),
-        `f = ${p.coefficients.map((c) => format(c)).join(', ')}`];
+        ...Object.entries(p.params).map(([k, v]) => `${k.replaceAll('_', ' ')}: ${k === 'half_angle' ? degrees(v)
+          : Array.isArray(v[0]) ? v.map((row) => vector(row)).join(' ') : Array.isArray(v) ? vector(v) : format(v)}`),
+        `f = ${polynomial(p.coefficients)}`];
       detail.append(...lines.map((l) => element('div', { text: l })));
     }
     paint();
@@ -415,7 +448,7 @@ export function createViewer(root, options = {}) {
   const display = gui.addFolder('Display');
   display.add(settings, 'view', Object.keys(VIEWS)).name('view').onChange(showView);
   display.add(settings, 'colouring', Object.keys(COLOURINGS)).name('colour').onChange(() => { paint(); fillTable(); });
-  display.add(settings, 'wireframe').name('wireframe').onChange((v) => { wire.visible = v; });
+  display.add(settings, 'wireframe').name('wireframe').onChange((v) => { wire.visible = v; requestRender(); });
 
   function forgetResult() {
     result = null;
@@ -626,7 +659,7 @@ export function createViewer(root, options = {}) {
     destroy() {
       alive = false;
       observer.disconnect();
-      renderer.setAnimationLoop(null);
+      controls.dispose();
       renderer.dispose();
       gui.destroy();
       client.terminate();

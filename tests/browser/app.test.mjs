@@ -72,6 +72,30 @@ test('the app opens with an example approximated, no console errors, a drawn can
   assert.deepEqual(consoleErrors, []);
 });
 
+test('an idle page draws nothing; a camera move draws', async () => {
+  const frames = (action) => page.evaluate(async (action) => {
+    let n = 0;
+    const raf = window.requestAnimationFrame;
+    window.requestAnimationFrame = (callback) => (++n, raf(callback));
+    if (action) document.querySelector('.vqsa-canvas canvas').dispatchEvent(new WheelEvent('wheel', { deltaY: 200, bubbles: true }));
+    await new Promise((resolve) => setTimeout(resolve, 1000));
+    window.requestAnimationFrame = raf;
+    return n;
+  }, action);
+  assert.equal(await frames(false), 0);
+  assert.ok(await frames(true) > 0);
+});
+
+test('the inspector prints parameters in the units they mean', async () => {
+  // The example's cone: its half-angle in degrees, the quadric with its terms.
+  await page.hover('.vqsa-table tr[data-region]:has-text("cone")');
+  const detail = await page.textContent('.vqsa-detail');
+  assert.match(detail, /half angle: \d+\.\d\d°/);
+  assert.match(detail, /f = −?[0-9.e+-]+( [+−] [0-9.e+-]+ (x|y|z|x²|xy|xz|y²|yz|z²))+/);
+  assert.doesNotMatch(detail, /-0\b|\(0\.00, 0\.00, 0\.00\)/);
+  await page.mouse.move(0, 0);
+});
+
 test('dropping fandisk.off runs to the requested count live; the GLB downloads and validates', async () => {
   await setProxies(page, 22);
   await page.evaluate(() => {
