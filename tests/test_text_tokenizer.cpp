@@ -67,7 +67,8 @@ TEST(TextTokenizer, NumbersMustBeWholeTokens) {
     EXPECT_EQ(i, -42);
     EXPECT_FALSE(parse_integer("99999999999999999999", i));  // overflow
     EXPECT_FALSE(parse_integer("4.0", i));
-    TextTokenizer t(std::string("v 1\0 2", 6));
+    const std::string text("v 1\0 2", 6);  // outlives the tokenizer, which only views it
+    TextTokenizer t(text);
     EXPECT_EQ(t.token("x"), "v");
     EXPECT_EQ(t.token("x"), std::string_view("1\0", 2));
 }
