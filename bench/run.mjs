@@ -19,7 +19,7 @@ const RUNS = Number(process.env.VQSA_BENCH_RUNS ?? 3);
 const work = mkdtempSync(join(tmpdir(), 'vqsa-bench-'));
 
 const paperCases = [
-  // mesh, proxies, paper Table 1: Lloyd s, post-processing s (Xeon 2.66 GHz, 2006; their meshes, the paper's Table 1)
+  // mesh, proxies, paper Table 1: Lloyd s, post-processing s (Xeon 2.66 GHz, 2006; their own versions of the meshes)
   ['fandisk.off', 22, 11, 0.017],
   ['bunny_closed.off', 28, 103, 0.352],
   ['mask.off', 6, 203, 0.115],

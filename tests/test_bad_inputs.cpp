@@ -87,14 +87,7 @@ TEST(BadInputs, FarAndTinyMeshesGiveTheSameShapeAtTheirScale) {
 
 TEST(BadInputs, OptionsOutOfRangeAreRejected) {
     const Mesh mesh = read_mesh_file(corpus + "/far_away.off");
-    auto message = [&](Options o) {
-        try {
-            Pipeline p(mesh, o);
-        } catch (const std::invalid_argument& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
+    auto message = [&](const Options& o) { return test::invalid_argument_of([&] { Pipeline p(mesh, o); }); };
     Options automatic;  // no count and no tolerance: the count is chosen, not an error
     EXPECT_EQ(message(automatic), "");
     Options count = test::with_proxies(-1);

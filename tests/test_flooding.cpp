@@ -19,7 +19,7 @@ struct BentSheet {
 
     bool right(int face) const { return model.frame.to_input(model.barycentres[face]).x() > 0.5; }
     Vec3 unit(const Vec3& input) const { return model.frame.to_unit(input); }
-    // The faces whose input barycentre is nearest to p.
+    // The face whose barycentre is nearest to p (input coordinates).
     int face_near(const Vec3& p) const {
         int best = 0;
         for (int f = 1; f < model.face_count(); ++f)

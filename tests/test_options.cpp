@@ -1,5 +1,6 @@
 // The option schema (pipeline/options.h): one description every front end is made from.
 #include "pipeline/options.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -8,18 +9,7 @@
 using namespace vqsa;
 using nlohmann::json;
 
-namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "";
-}
-
-}  // namespace
+using test::invalid_argument_of;
 
 TEST(Options, EveryDefaultIsValidAndNamesAreUnique) {
     const Options defaults;
@@ -60,16 +50,16 @@ TEST(Options, NamesAndValuesAsFrontEndsSendThem) {
 
 TEST(Options, BadValuesSayWhichOptionAndWhatItTakes) {
     Options o;
-    EXPECT_EQ(error_of([&] { set_option(o, "proxies", 0); }), "proxies must be an integer between 1 and 1000000 or 'auto', not 0");
-    EXPECT_EQ(error_of([&] { set_option(o, "proxies", 1e6 + 1); }),
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "proxies", 0); }), "proxies must be an integer between 1 and 1000000 or 'auto', not 0");
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "proxies", 1e6 + 1); }),
               "proxies must be an integer between 1 and 1000000 or 'auto', not 1000001.0");
-    EXPECT_EQ(error_of([&] { set_option(o, "rings", "2.5"); }), "rings must be an integer between 1 and 100, not \"2.5\"");
-    EXPECT_EQ(error_of([&] { set_option(o, "tolerance", -1); }), "tolerance must be a number between 0 and 1, not -1");
-    EXPECT_EQ(error_of([&] { set_option(o, "init", "random"); }), "init must be one of 'features' 'paper', not \"random\"");
-    EXPECT_EQ(error_of([&] { set_option(o, "smooth", "maybe"); }), "smooth must be true or false, not \"maybe\"");
-    EXPECT_EQ(error_of([&] { set_option(o, "speed", 1); }), "unknown option 'speed'");
-    EXPECT_EQ(error_of([&] { options_from_json(json::array()); }), "options must be an object");
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "rings", "2.5"); }), "rings must be an integer between 1 and 100, not \"2.5\"");
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "tolerance", -1); }), "tolerance must be a number between 0 and 1, not -1");
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "init", "random"); }), "init must be one of 'features' 'paper', not \"random\"");
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "smooth", "maybe"); }), "smooth must be true or false, not \"maybe\"");
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "speed", 1); }), "unknown option 'speed'");
+    EXPECT_EQ(invalid_argument_of([&] { options_from_json(json::array()); }), "options must be an object");
     // Values set on the struct directly meet the same checks.
     o.smoothing.lambda = -2;
-    EXPECT_EQ(error_of([&] { validate(o); }), "lambda must be a number between 0 and 1000000, not -2.0");
+    EXPECT_EQ(invalid_argument_of([&] { validate(o); }), "lambda must be a number between 0 and 1000000, not -2.0");
 }

@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace vqsa::test {
 
@@ -83,6 +84,15 @@ Options with_proxies(int count, std::uint64_t seed) {
     o.lloyd.proxies = count;
     o.lloyd.seed = seed;
     return o;
+}
+
+std::string invalid_argument_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
+    return "";
 }
 
 Result approximate(const Mesh& mesh, const Options& options, const ProgressCallback& progress) {

@@ -33,6 +33,9 @@ std::string shared_mesh(const std::string& name);
 
 Options with_proxies(int count, std::uint64_t seed = 1);
 
+// The message of the std::invalid_argument that `f` throws, or "" when it throws none.
+std::string invalid_argument_of(const std::function<void()>& f);
+
 // A whole run; `progress` (if any) sees every step.
 Result approximate(const Mesh& mesh, const Options& options, const ProgressCallback& progress = {});
 

@@ -1,6 +1,7 @@
 // The tokenizer of the text formats (io/text_tokenizer.h): tokens, lines, comments,
 // numbers, and the errors that name the line.
 #include "io/text_tokenizer.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -8,18 +9,7 @@
 
 using namespace vqsa;
 
-namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "";
-}
-
-}  // namespace
+using test::invalid_argument_of;
 
 TEST(TextTokenizer, TokensLinesAndComments) {
     TextTokenizer t("OFF # a comment\n\t3 1 0\r\n# only a comment\n0.5 -1e-3 +2\n");
@@ -46,11 +36,11 @@ TEST(TextTokenizer, NoCommentCharacterAndSkipLine) {
 }
 
 TEST(TextTokenizer, ErrorsNameTheLineAndWhatWasExpected) {
-    EXPECT_EQ(error_of([] { TextTokenizer t("1 2\n3 x"); t.point(); t.number("a vertex coordinate"); }),
+    EXPECT_EQ(invalid_argument_of([] { TextTokenizer t("1 2\n3 x"); t.point(); t.number("a vertex coordinate"); }),
               "line 2: expected a vertex coordinate, found 'x'");
-    EXPECT_EQ(error_of([] { TextTokenizer t("\n\n7"); t.integer("a count"); t.integer("a face index"); }),
+    EXPECT_EQ(invalid_argument_of([] { TextTokenizer t("\n\n7"); t.integer("a count"); t.integer("a face index"); }),
               "line 3: unexpected end of file, expected a face index");
-    EXPECT_EQ(error_of([] { TextTokenizer t("1.5"); t.integer("a count"); }), "line 1: expected a count, found '1.5'");
+    EXPECT_EQ(invalid_argument_of([] { TextTokenizer t("1.5"); t.integer("a count"); }), "line 1: expected a count, found '1.5'");
 }
 
 TEST(TextTokenizer, NumbersMustBeWholeTokens) {
