@@ -75,7 +75,11 @@ nlohmann::json run_report(const Result& result) {
                           {"iterations", result.iterations},
                           {"rms_error", result.rms_error},
                           {"rms_error_relative", result.rms_error_relative}};
-    if (const auto& m = result.metrics) run["metrics"] = {{"rms", m->rms}, {"hausdorff", m->hausdorff}};
+    if (const auto& m = result.metrics)
+        run["metrics"] = {{"rms", m->rms},
+                          {"hausdorff", m->hausdorff},
+                          {"rms_standard_error", m->rms_standard_error},
+                          {"samples", m->samples}};
     return run;
 }
 
@@ -84,7 +88,9 @@ nlohmann::json make_report(const Result& result) {
     nlohmann::json proxies = nlohmann::json::array();
     for (int i = 0; i < static_cast<int>(result.proxies.size()); ++i) proxies.push_back(proxy_report(result, i));
     const Timing& t = result.timing;
-    report["timing_s"] = {{"load", t.load}, {"lloyd", t.lloyd}, {"postprocess", t.postprocess}, {"total", t.total}};
+    report["timing_s"] = {{"load", t.load},       {"lloyd", t.lloyd},     {"postprocess", t.postprocess},
+                          {"smooth", t.smooth},   {"refit", t.refit},     {"project", t.project},
+                          {"measure", t.measure}, {"total", t.total}};
     report["proxies"] = proxies;
     report["labels"] = result.labels;
     report["labels_lloyd"] = result.lloyd_labels;

@@ -26,50 +26,64 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
     return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
-TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles)
-    : points_(points), triangles_(triangles) {
+TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles) {
     const int n = static_cast<int>(triangles.size());
     order_.resize(n);
-    centers_.resize(n);
+    corners_.resize(n);
     for (int i = 0; i < n; ++i) {
         order_[i] = i;
-        centers_[i] = (points[triangles[i][0]] + points[triangles[i][1]] + points[triangles[i][2]]) / 3;
+        for (int k = 0; k < 3; ++k) corners_[i][k] = points[triangles[i][k]];
     }
     nodes_.reserve(2 * std::max(n, 1));
     if (n > 0) build(0, n);
+    // Corners in tree order.
+    std::vector<std::array<Vec3, 3>> sorted(n);
+    slot_.resize(n);
+    for (int i = 0; i < n; ++i) sorted[i] = corners_[order_[i]], slot_[order_[i]] = i;
+    corners_ = std::move(sorted);
 }
 
-int TriangleTree::build(int first, int count) {
+void TriangleTree::build(int first, int count) {
     const int index = static_cast<int>(nodes_.size());
     nodes_.push_back({});
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     Vec3 clo = lo, chi = hi;
+    auto center = [&](int t) { return (corners_[t][0] + corners_[t][1] + corners_[t][2]) / 3; };
     for (int i = first; i < first + count; ++i) {
-        for (int v : triangles_[order_[i]]) lo = lo.cwiseMin(points_[v]), hi = hi.cwiseMax(points_[v]);
-        clo = clo.cwiseMin(centers_[order_[i]]), chi = chi.cwiseMax(centers_[order_[i]]);
+        for (const Vec3& v : corners_[order_[i]]) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        const Vec3 c = center(order_[i]);
+        clo = clo.cwiseMin(c), chi = chi.cwiseMax(c);
     }
     nodes_[index].min = lo;
     nodes_[index].max = hi;
     if (count <= 4) {
         nodes_[index].first = first;
         nodes_[index].count = count;
-        return index;
+        return;
     }
     int axis;
     (chi - clo).maxCoeff(&axis);
     const int half = count / 2;
     std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
                      [&](int a, int b) {
-                         return centers_[a][axis] != centers_[b][axis] ? centers_[a][axis] < centers_[b][axis] : a < b;
+                         const double ca = center(a)[axis], cb = center(b)[axis];
+                         return ca != cb ? ca < cb : a < b;
                      });
-    const int left = build(first, half);
-    const int right = build(first + half, count - half);
-    nodes_[index].left = left;
+    build(first, half);  // the first child is the next node
+    const int right = static_cast<int>(nodes_.size());
+    build(first + half, count - half);
     nodes_[index].right = right;
-    return index;
 }
 
-TriangleTree::Hit TriangleTree::nearest(const Vec3& p) const {
+void TriangleTree::visit(const Vec3& p, int slot, double& best2, Hit& best) const {
+    const std::array<Vec3, 3>& t = corners_[slot];
+    const Vec3 q = closest_point_on_triangle(p, t[0], t[1], t[2]);
+    const double d2 = (q - p).squaredNorm();
+    // Ties go to the lower triangle index, so the answer does not depend on the hint.
+    if (d2 < best2 || (d2 == best2 && order_[slot] < best.triangle)) best2 = d2, best = {q, 0, order_[slot]};
+}
+
+TriangleTree::Hit TriangleTree::nearest(const Vec3& p, int hint) const {
     Hit best{p, std::numeric_limits<double>::infinity(), -1};
     if (nodes_.empty()) return best;
     auto box_distance2 = [&](const Node& node) {
@@ -77,22 +91,19 @@ TriangleTree::Hit TriangleTree::nearest(const Vec3& p) const {
         return d.squaredNorm();
     };
     double best2 = std::numeric_limits<double>::infinity();
+    if (hint >= 0 && hint < static_cast<int>(slot_.size())) visit(p, slot_[hint], best2, best);
     int stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const Node& node = nodes_[stack[--top]];
-        if (box_distance2(node) >= best2) continue;
-        if (node.left < 0) {
-            for (int i = node.first; i < node.first + node.count; ++i) {
-                const Triangle& t = triangles_[order_[i]];
-                const Vec3 q = closest_point_on_triangle(p, points_[t[0]], points_[t[1]], points_[t[2]]);
-                const double d2 = (q - p).squaredNorm();
-                if (d2 < best2) best2 = d2, best = {q, 0, order_[i]};
-            }
+        const int index = stack[--top];
+        const Node& node = nodes_[index];
+        if (box_distance2(node) > best2) continue;
+        if (node.right < 0) {
+            for (int i = node.first; i < node.first + node.count; ++i) visit(p, i, best2, best);
             continue;
         }
-        const int left = node.left, right = node.right;
+        const int left = index + 1, right = node.right;
         // Visit the nearer child first.
         const double dl = box_distance2(nodes_[left]), dr = box_distance2(nodes_[right]);
         if (dl < dr) {

@@ -3,6 +3,7 @@
 
 #include "io/mesh.h"
 
+#include <array>
 #include <vector>
 
 namespace vqsa {
@@ -19,20 +20,22 @@ public:
         double distance;
         int triangle;
     };
-    Hit nearest(const Vec3& p) const;
+    // `hint`: a triangle likely to be near p (or -1). It bounds the search from the start,
+    // so a query next to its answer visits a few nodes; the answer does not depend on it.
+    Hit nearest(const Vec3& p, int hint = -1) const;
 
 private:
     struct Node {
         Vec3 min = Vec3::Zero(), max = Vec3::Zero();
-        int first = 0, count = 0;  // a leaf's triangles: order_[first, first + count)
-        int left = -1, right = -1; // an inner node's children
+        int first = 0, count = 0;  // a leaf's triangles: slots [first, first + count)
+        int right = -1;            // an inner node's second child (the first follows it)
     };
-    int build(int first, int count);
+    void build(int first, int count);
+    void visit(const Vec3& p, int slot, double& best2, Hit& best) const;
 
-    const std::vector<Vec3>& points_;
-    const std::vector<Triangle>& triangles_;
-    std::vector<int> order_;
-    std::vector<Vec3> centers_;
+    // Triangles in tree order, their corners copied so a leaf reads contiguous memory.
+    std::vector<int> order_, slot_;  // slot → triangle, triangle → slot
+    std::vector<std::array<Vec3, 3>> corners_;
     std::vector<Node> nodes_;
 };
 

@@ -188,11 +188,14 @@ public:
     MeasureStage(const Model& model, const Options& options, State& state)
         : model_(model), options_(options), state_(state) {}
     Stage id() const override { return Stage::measure; }
-    double fraction() const override { return 0; }
+    double fraction() const override { return measurement_ ? measurement_->fraction() : 0; }
     bool step() override {
         state_.phase = "measure";
-        state_.metrics = measure(model_.points, state_.projected, model_.triangles, state_.labels,
-                                 static_cast<int>(state_.proxies.size()), options_.metrics);
+        if (!measurement_)
+            measurement_ = std::make_unique<Measurement>(model_.points, state_.projected, model_.triangles, state_.labels,
+                                                         static_cast<int>(state_.proxies.size()), options_.metrics);
+        if (measurement_->step()) return true;
+        state_.metrics = measurement_->result();
         return false;
     }
 
@@ -200,6 +203,7 @@ private:
     const Model& model_;
     const Options& options_;
     State& state_;
+    std::unique_ptr<Measurement> measurement_;
 };
 
 double elapsed(std::chrono::steady_clock::time_point since) {
@@ -234,7 +238,7 @@ const std::vector<int>& Pipeline::face_labels() const {
 bool Pipeline::step() {
     if (done()) return false;
     const auto start = std::chrono::steady_clock::now();
-    double& seconds = seconds_[current_ == 0 ? 0 : 1];
+    double& seconds = seconds_[static_cast<int>(stage())];
     if (cancel_requested_) {
         if (current_ == 0) {
             // The Lloyd stage ends with a consistent partition; nothing runs after it.
@@ -294,7 +298,16 @@ Result Pipeline::result(double load_seconds) const {
     const Progress now = progress();
     r.rms_error_relative = now.rms;
     r.rms_error = now.rms * model_.frame.scale;
-    r.timing = {load_seconds, seconds_[0], seconds_[1], load_seconds + seconds_[0] + seconds_[1]};
+    auto seconds = [&](Stage s) { return seconds_[static_cast<int>(s)]; };
+    Timing& t = r.timing;
+    t.load = load_seconds;
+    t.lloyd = seconds(Stage::lloyd);
+    t.smooth = seconds(Stage::smooth);
+    t.refit = seconds(Stage::refit);
+    t.project = seconds(Stage::project);
+    t.measure = seconds(Stage::measure);
+    t.postprocess = t.smooth + t.refit + t.project + t.measure;
+    t.total = t.load + t.lloyd + t.postprocess;
 
     r.face_labels = face_labels();
     r.lloyd_face_labels = state_.lloyd_labels.empty() ? r.face_labels : state_.lloyd_labels;

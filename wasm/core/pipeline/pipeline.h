@@ -77,7 +77,7 @@ private:
     State state_;
     std::vector<std::unique_ptr<PipelineStage>> stages_;
     std::size_t current_ = 0;
-    double seconds_[2] = {0, 0};  // Lloyd, post-processing
+    double seconds_[static_cast<int>(Stage::done)] = {};  // per stage
     bool cancel_requested_ = false;
 };
 

@@ -42,8 +42,10 @@ struct InputInfo {
     double bbox_longest_side = 0;
 };
 
-struct Timing {
-    double load = 0, lloyd = 0, postprocess = 0, total = 0;  // seconds
+struct Timing {  // seconds
+    double load = 0, lloyd = 0, postprocess = 0, total = 0;
+    // The post-processing stages (0 for one that did not run): their sum is `postprocess`.
+    double smooth = 0, refit = 0, project = 0, measure = 0;
 };
 
 struct Result {
