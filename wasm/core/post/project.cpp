@@ -48,14 +48,111 @@ Vec3 polish(const Quadric& f, Vec3 x) {
 
 }  // namespace
 
-std::optional<Vec3> foot_point(const Quadric& f, const Vec3& p) {
-    if (f.is_plane()) {
-        const Vec3 n = f.b();
-        return p - (f.value(p) / n.squaredNorm()) * n;
-    }
+FootPoint::FootPoint(const Quadric& f) : f_(f) {
+    if (f.is_plane()) return;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(f.A());
-    const Eigen::Matrix3d R = eig.eigenvectors();
-    const Vec3 lambda = eig.eigenvalues(), beta = R.transpose() * f.b(), y = R.transpose() * p;
+    R_ = eig.eigenvectors();
+    lambda_ = eig.eigenvalues();
+}
+
+std::optional<Vec3> foot_point(const Quadric& f, const Vec3& p) { return FootPoint(f)(p); }
+
+std::optional<Vec3> FootPoint::operator()(const Vec3& p) const {
+    if (f_.is_plane()) {
+        const Vec3 n = f_.b();
+        return p - (f_.value(p) / n.squaredNorm()) * n;
+    }
+    const Vec3 beta = R_.transpose() * f_.b(), y = R_.transpose() * p;
+    const double c = f_.c[0];
+    const double inf = std::numeric_limits<double>::infinity();
+    // The interval where every 1 + μ λ_i > 0.
+    double lo = -inf, hi = inf;
+    for (int i = 0; i < 3; ++i) {
+        if (lambda_[i] > 0) lo = std::max(lo, -1 / lambda_[i]);
+        if (lambda_[i] < 0) hi = std::min(hi, -1 / lambda_[i]);
+    }
+    Vec3 x;
+    auto F = [&](double mu, double* slope) {
+        double value = c, derivative = 0;
+        for (int i = 0; i < 3; ++i) {
+            const double D = 1 + mu * lambda_[i];
+            x[i] = (y[i] - 0.5 * mu * beta[i]) / D;
+            const double g = lambda_[i] * x[i] + 0.5 * beta[i];  // half the gradient
+            value += (lambda_[i] * x[i] + beta[i]) * x[i];
+            derivative -= 2 * g * g / D;
+        }
+        if (slope) *slope = derivative;
+        return value;
+    };
+    double slope;
+    const double f0 = F(0, &slope);
+    if (f0 == 0) return p;
+    // Bracket the root on the side F's sign points to: F decreases.
+    double a = 0, b = f0 > 0 ? hi : lo;
+    if (!std::isfinite(b)) {
+        double step = slope < 0 ? std::abs(f0 / slope) : 1;
+        bool found = false;
+        for (int k = 0; k < 200 && !found; ++k, step *= 4) {
+            const double mu = f0 > 0 ? step : -step;
+            const double v = F(mu, nullptr);
+            if (!std::isfinite(v)) break;
+            if ((v > 0) == (f0 > 0)) a = mu; else b = mu, found = true;
+        }
+        if (!found) return by_polynomial(p);
+    }
+    // Newton inside [a, b] (a on f0's side), bisection when a step leaves it.
+    double mu = a;
+    bool converged = false;
+    for (int it = 0; it < 100; ++it) {
+        const double v = F(mu, &slope);
+        if (v == 0) { converged = true; break; }
+        if ((v > 0) == (f0 > 0)) a = mu; else b = mu;
+        double next = slope != 0 ? mu - v / slope : 0.5 * (a + b);
+        const bool inside = f0 > 0 ? next > a && next < b : next < a && next > b;
+        if (!inside) next = 0.5 * (a + b);
+        if (std::abs(next - mu) <= 1e-15 * (1 + std::abs(next))) { mu = next; converged = true; break; }
+        mu = next;
+    }
+    F(mu, nullptr);
+    bool at_pole = false;
+    for (int i = 0; i < 3; ++i) at_pole = at_pole || std::abs(1 + mu * lambda_[i]) < 1e-9;
+    if (at_pole) {
+        // The hard case: p lies where the directions of the bounding eigenvalue meet the
+        // centre (a symmetry axis or plane), F keeps its sign up to the pole, and there x
+        // is free along those directions: f(x) = 0 fixes how far.
+        const double pole = f0 > 0 ? hi : lo;
+        if (!std::isfinite(pole)) return by_polynomial(p);
+        const double lj = -1 / pole;
+        double rest = c;
+        int free_axis = -1;
+        for (int i = 0; i < 3; ++i) {
+            const double D = 1 + pole * lambda_[i];
+            if (std::abs(D) < 1e-9) {
+                x[i] = -0.5 * beta[i] / lj;  // the centre along this direction
+                if (free_axis < 0) free_axis = i;
+            } else {
+                x[i] = (y[i] - 0.5 * pole * beta[i]) / D;
+            }
+            rest += (lambda_[i] * x[i] + beta[i]) * x[i];
+        }
+        // λ_j (x_j − x_j⁰)² = −f(x⁰) along the free axis.
+        const double squared = -rest / lj;
+        if (free_axis < 0 || squared < 0) return by_polynomial(p);
+        x[free_axis] += std::sqrt(squared);
+        converged = true;
+    }
+    if (!converged || !x.allFinite()) return by_polynomial(p);
+    const Vec3 foot = polish(f_, R_ * x);
+    if (!foot.allFinite()) return by_polynomial(p);
+    return foot;
+}
+
+std::optional<Vec3> FootPoint::by_polynomial(const Vec3& p) const {
+    if (f_.is_plane()) return (*this)(p);
+    const Quadric& f = f_;
+    const Eigen::Matrix3d& R = R_;
+    const Vec3& lambda = lambda_;
+    const Vec3 beta = R.transpose() * f.b(), y = R.transpose() * p;
     const double c = f.c[0];
 
     // P(μ) = Σ λ_i N_i² Π_{j≠i} D_j² + Σ β_i N_i D_i Π_{j≠i} D_j² + c Π D_j²,
@@ -158,6 +255,8 @@ std::vector<Vec3> project_vertices(const Model& model, const std::vector<int>& l
             std::vector<int>& list = proxies_of[v];
             if (std::find(list.begin(), list.end(), labels[f]) == list.end()) list.push_back(labels[f]);
         }
+    std::vector<FootPoint> solvers;
+    for (const ProjectionTarget& t : targets) solvers.emplace_back(t.quadric);
     std::vector<Vec3> out(model.points);
     for (std::size_t v = 0; v < n; ++v) {
         Vec3 sum = Vec3::Zero();
@@ -165,8 +264,8 @@ std::vector<Vec3> project_vertices(const Model& model, const std::vector<int>& l
         for (int proxy : proxies_of[v]) {
             const ProjectionTarget& t = targets[proxy];
             const Vec3& p = model.points[v];
-            const std::optional<Vec3> foot = t.special ? std::optional<Vec3>(special_foot_point(*t.special, p))
-                                                       : foot_point(t.quadric, p);
+            const std::optional<Vec3> foot =
+                t.special ? std::optional<Vec3>(special_foot_point(*t.special, p)) : solvers[proxy](p);
             if (foot && (*foot - p).norm() <= max_distance) sum += *foot, ++count;
         }
         if (count > 0) out[v] = sum / count;

@@ -10,10 +10,28 @@
 
 namespace vqsa {
 
-// The nearest point of {f = 0} to p, for a general quadric: in the eigenframe of A the
-// Lagrange condition gives x_i(μ) = (p_i − μ β_i / 2) / (1 + μ λ_i); f(x(μ)) = 0 cleared
-// of denominators is a polynomial of degree ≤ 6 whose real roots (companion matrix,
-// polished by Newton) are the candidates. Empty when no candidate exists.
+// The nearest point of {f = 0} to p, for a general quadric, set up once per quadric for
+// many points. In the eigenframe of A the Lagrange condition gives
+// x_i(μ) = (p_i − μ β_i / 2) / (1 + μ λ_i). Where every 1 + μ λ_i > 0, F(μ) = f(x(μ)) is
+// decreasing (it is the derivative of the concave dual function), and its root there is the
+// global minimum (strong duality with one quadratic constraint): a bracketed Newton
+// iteration started at μ = 0 finds it in a few steps. Only when that root does not exist
+// (p on a symmetry axis or plane: the "hard case") are all the real roots of F cleared of
+// denominators — a polynomial of degree ≤ 6, by its companion matrix — the candidates.
+// Empty when no candidate exists.
+class FootPoint {
+public:
+    explicit FootPoint(const Quadric& f);
+    std::optional<Vec3> operator()(const Vec3& p) const;
+    // The polynomial's candidates only (the fallback; exposed for tests).
+    std::optional<Vec3> by_polynomial(const Vec3& p) const;
+
+private:
+    Quadric f_;
+    Eigen::Matrix3d R_;  // eigenvectors of A
+    Vec3 lambda_;        // eigenvalues, ascending
+};
+
 std::optional<Vec3> foot_point(const Quadric& f, const Vec3& p);
 
 // Closed forms for plane, sphere, cylinder and cone.
