@@ -76,7 +76,7 @@ public:
             } catch (const nlohmann::json::exception&) {
                 throw std::invalid_argument("options must be a plain object");
             }
-            pipeline_ = std::make_unique<Pipeline>(*mesh_, options_from_json(object));
+            pipeline_ = std::make_unique<Pipeline>(*mesh_, model_, options_from_json(object));
             return 0;
         });
     }
@@ -174,8 +174,11 @@ private:
     val set_mesh(Mesh mesh, double started) {
         pipeline_.reset();
         result_.reset();
-        load_seconds_ = (emscripten_get_now() - started) / 1000;
+        model_.reset();
         mesh_ = std::make_unique<Mesh>(std::move(mesh));
+        // Built once per mesh: every run on it shares the model, and starting one is quick.
+        if (!mesh_->triangles.empty()) model_ = std::make_shared<const Model>(make_model(*mesh_));
+        load_seconds_ = (emscripten_get_now() - started) / 1000;
         val info = val::object();
         info.set("vertices", mesh_->input_vertex_count);
         info.set("faces", mesh_->input_face_count);
@@ -199,9 +202,10 @@ private:
     }
 
     std::unique_ptr<Mesh> mesh_;
+    std::shared_ptr<const Model> model_;
     std::unique_ptr<Pipeline> pipeline_;
     mutable std::unique_ptr<Result> result_;
-    double load_seconds_ = 0;  // reading and cleaning the mesh
+    double load_seconds_ = 0;  // reading and cleaning the mesh, building its model
 };
 
 EMSCRIPTEN_BINDINGS(vqsa) {

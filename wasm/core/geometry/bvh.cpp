@@ -26,53 +26,77 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
     return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
-TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles) {
+TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles)
+    : TriangleTree(points, triangles, Deferred{}) {
+    while (build_some(std::numeric_limits<long>::max())) {
+    }
+}
+
+TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles, Deferred) {
     const int n = static_cast<int>(triangles.size());
     order_.resize(n);
     corners_.resize(n);
+    centers_.resize(n);
     for (int i = 0; i < n; ++i) {
         order_[i] = i;
         for (int k = 0; k < 3; ++k) corners_[i][k] = points[triangles[i][k]];
+        centers_[i] = (corners_[i][0] + corners_[i][1] + corners_[i][2]) / 3;
     }
     nodes_.reserve(2 * std::max(n, 1));
-    if (n > 0) build(0, n);
+    if (n > 0) pending_.push_back({0, n, -1});
+    else finish();
+}
+
+bool TriangleTree::build_some(long budget) {
+    // Depth first, the first child right after its parent: a node's second child is
+    // pending while its first subtree is built.
+    long spent = 0;
+    while (!pending_.empty() && spent < budget) {
+        const Range range = pending_.back();
+        pending_.pop_back();
+        const int index = static_cast<int>(nodes_.size());
+        if (range.parent >= 0) nodes_[range.parent].right = index;
+        nodes_.push_back({});
+        const int first = range.first, count = range.count;
+        spent += count;
+        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        Vec3 clo = lo, chi = hi;
+        for (int i = first; i < first + count; ++i) {
+            for (const Vec3& v : corners_[order_[i]]) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+            clo = clo.cwiseMin(centers_[order_[i]]), chi = chi.cwiseMax(centers_[order_[i]]);
+        }
+        nodes_[index].min = lo;
+        nodes_[index].max = hi;
+        if (count <= 4) {
+            nodes_[index].first = first;
+            nodes_[index].count = count;
+            continue;
+        }
+        int axis;
+        (chi - clo).maxCoeff(&axis);
+        const int half = count / 2;
+        std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+                         [&](int a, int b) {
+                             const double ca = centers_[a][axis], cb = centers_[b][axis];
+                             return ca != cb ? ca < cb : a < b;
+                         });
+        pending_.push_back({first + half, count - half, index});
+        pending_.push_back({first, half, -1});  // popped next: it becomes node index + 1
+    }
+    if (!pending_.empty()) return true;
+    finish();
+    return false;
+}
+
+void TriangleTree::finish() {
     // Corners in tree order.
+    const int n = static_cast<int>(order_.size());
     std::vector<std::array<Vec3, 3>> sorted(n);
     slot_.resize(n);
     for (int i = 0; i < n; ++i) sorted[i] = corners_[order_[i]], slot_[order_[i]] = i;
     corners_ = std::move(sorted);
-}
-
-void TriangleTree::build(int first, int count) {
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.push_back({});
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    Vec3 clo = lo, chi = hi;
-    auto center = [&](int t) { return (corners_[t][0] + corners_[t][1] + corners_[t][2]) / 3; };
-    for (int i = first; i < first + count; ++i) {
-        for (const Vec3& v : corners_[order_[i]]) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-        const Vec3 c = center(order_[i]);
-        clo = clo.cwiseMin(c), chi = chi.cwiseMax(c);
-    }
-    nodes_[index].min = lo;
-    nodes_[index].max = hi;
-    if (count <= 4) {
-        nodes_[index].first = first;
-        nodes_[index].count = count;
-        return;
-    }
-    int axis;
-    (chi - clo).maxCoeff(&axis);
-    const int half = count / 2;
-    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
-                     [&](int a, int b) {
-                         const double ca = center(a)[axis], cb = center(b)[axis];
-                         return ca != cb ? ca < cb : a < b;
-                     });
-    build(first, half);  // the first child is the next node
-    const int right = static_cast<int>(nodes_.size());
-    build(first + half, count - half);
-    nodes_[index].right = right;
+    centers_ = {};
+    built_ = true;
 }
 
 void TriangleTree::visit(const Vec3& p, int slot, double& best2, Hit& best) const {
@@ -85,7 +109,7 @@ void TriangleTree::visit(const Vec3& p, int slot, double& best2, Hit& best) cons
 
 TriangleTree::Hit TriangleTree::nearest(const Vec3& p, int hint) const {
     Hit best{p, std::numeric_limits<double>::infinity(), -1};
-    if (nodes_.empty()) return best;
+    if (nodes_.empty() || !built_) return best;
     auto box_distance2 = [&](const Node& node) {
         const Vec3 d = (node.min - p).cwiseMax(p - node.max).cwiseMax(Vec3::Zero());
         return d.squaredNorm();

@@ -14,6 +14,12 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 class TriangleTree {
 public:
     TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles);
+    // A tree built in pieces: build_some() until it returns false (queries need it built).
+    struct Deferred {};
+    TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles, Deferred);
+    // Builds nodes until about `budget` triangles have been partitioned; false once built.
+    bool build_some(long budget);
+    bool built() const { return built_; }
 
     struct Hit {
         Vec3 point;
@@ -30,13 +36,19 @@ private:
         int first = 0, count = 0;  // a leaf's triangles: slots [first, first + count)
         int right = -1;            // an inner node's second child (the first follows it)
     };
-    void build(int first, int count);
+    struct Range {
+        int first, count, parent;  // parent: the node whose second child this is, or -1
+    };
+    void finish();
     void visit(const Vec3& p, int slot, double& best2, Hit& best) const;
 
     // Triangles in tree order, their corners copied so a leaf reads contiguous memory.
     std::vector<int> order_, slot_;  // slot → triangle, triangle → slot
     std::vector<std::array<Vec3, 3>> corners_;
     std::vector<Node> nodes_;
+    std::vector<Vec3> centers_;   // while building
+    std::vector<Range> pending_;  // while building
+    bool built_ = false;
 };
 
 }  // namespace vqsa

@@ -130,13 +130,17 @@ std::vector<int> seeds_of(const std::vector<Proxy>& proxies) {
     return out;
 }
 
+void check_proxy_count(const Model& model, const LloydOptions& options) {
+    validate(options);
+    if (model.face_count() == 0) throw std::invalid_argument("the mesh has no faces");
+    if (options.proxies > model.face_count())
+        throw std::invalid_argument("proxies (" + std::to_string(options.proxies) + ") exceeds the number of faces (" +
+                                    std::to_string(model.face_count()) + ")");
+}
+
 Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     : model_(model), options_(options), rng_(options.seed) {
-    validate(options_);
-    if (model.face_count() == 0) throw std::invalid_argument("the mesh has no faces");
-    if (options_.proxies > model.face_count())
-        throw std::invalid_argument("proxies (" + std::to_string(options_.proxies) + ") exceeds the number of faces (" +
-                                    std::to_string(model.face_count()) + ")");
+    check_proxy_count(model, options_);
     FeatureOptions features = options_.features;
     if (options_.init == Initialization::paper) features.crease_angle = 180;
     features_ = detect_features(model_, features);

@@ -38,31 +38,42 @@ namespace {
 
 using State = Pipeline::State;
 
+// The Lloyd engine is built at the stage's first step (feature detection and the first
+// fits: a piece of its own), so constructing a pipeline costs little.
 class LloydStage : public PipelineStage {
 public:
-    LloydStage(const Model& model, const LloydOptions& options, State& state) : lloyd_(model, options), state_(state) {}
+    LloydStage(const Model& model, const LloydOptions& options, State& state)
+        : model_(model), options_(options), state_(state) {}
     Stage id() const override { return Stage::lloyd; }
-    double fraction() const override { return lloyd_.fraction(); }
-    const std::vector<int>& labels() const { return lloyd_.labels(); }
-    const Lloyd& lloyd() const { return lloyd_; }
-    void cancel() { lloyd_.cancel(); }
+    double fraction() const override { return lloyd_ ? lloyd_->fraction() : 0; }
+    const std::vector<int>& labels() const { return lloyd_ ? lloyd_->labels() : state_.labels; }
+    const Lloyd* lloyd() const { return lloyd_.get(); }
+    void cancel() {
+        if (lloyd_) lloyd_->cancel();
+    }
 
     bool step() override {
-        const bool more = lloyd_.step();
-        state_.phase = operation_name(lloyd_.last_operation());
-        state_.iterations = lloyd_.iterations();
+        if (!lloyd_) {
+            lloyd_ = std::make_unique<Lloyd>(model_, options_);
+            return true;
+        }
+        const bool more = lloyd_->step();
+        state_.phase = operation_name(lloyd_->last_operation());
+        state_.iterations = lloyd_->iterations();
         if (more) return true;
-        state_.stop_reason = lloyd_.stop_reason();
-        state_.labels = state_.lloyd_labels = lloyd_.labels();
-        state_.proxies = lloyd_.proxies();
-        state_.energy = lloyd_.energy();
-        if (lloyd_.options().init == Initialization::features) state_.crease = lloyd_.features().crease;
+        state_.stop_reason = lloyd_->stop_reason();
+        state_.labels = state_.lloyd_labels = lloyd_->labels();
+        state_.proxies = lloyd_->proxies();
+        state_.energy = lloyd_->energy();
+        if (options_.init == Initialization::features) state_.crease = lloyd_->features().crease;
         return false;
     }
 
 private:
-    Lloyd lloyd_;
+    const Model& model_;
+    const LloydOptions& options_;
     State& state_;
+    std::unique_ptr<Lloyd> lloyd_;
 };
 
 // Graph-cut smoothing, one boundary per step; then every region is refitted.
@@ -106,7 +117,8 @@ private:
     std::unique_ptr<BoundarySmoother> smoother_;
 };
 
-// Each region's type by model selection over its vertices, one region per step.
+// Each region's type by model selection over its vertices, one region per step; then
+// the tangent seams, one region per step.
 class RefitStage : public PipelineStage {
 public:
     RefitStage(const Model& model, const Options& options, State& state)
@@ -117,7 +129,8 @@ public:
     }
     Stage id() const override { return Stage::refit; }
     double fraction() const override {
-        return state_.proxies.empty() ? 1 : double(next_) / state_.proxies.size();
+        const double regions = state_.proxies.empty() ? 1 : double(next_) / state_.proxies.size();
+        return 0.5 * regions + 0.5 * (simplifier_ ? simplifier_->fraction() : 0);
     }
 
     bool step() override {
@@ -140,8 +153,10 @@ public:
             ++next_;
             return true;
         }
-        simplify_seams(model_, state_.labels, state_.proxies, state_.choices, state_.crease.empty() ? nullptr : &state_.crease,
-                       seams_);
+        if (!simplifier_)
+            simplifier_ = std::make_unique<SeamSimplifier>(model_, state_.labels, state_.proxies, state_.choices,
+                                                           state_.crease.empty() ? nullptr : &state_.crease, seams_);
+        if (simplifier_->step()) return true;
         FaceErrors evaluator;
         std::vector<double> errors;
         state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
@@ -154,6 +169,7 @@ private:
     State& state_;
     SeamOptions seams_;
     std::vector<std::vector<int>> region_faces_;
+    std::unique_ptr<SeamSimplifier> simplifier_;
     bool started_ = false;
     int next_ = 0;
 };
@@ -163,17 +179,23 @@ public:
     ProjectStage(const Model& model, const Options& options, State& state)
         : model_(model), options_(options), state_(state) {}
     Stage id() const override { return Stage::project; }
-    double fraction() const override { return 0; }
+    double fraction() const override { return projector_ ? projector_->fraction() : 0; }
     bool step() override {
         state_.phase = "project";
-        std::vector<ProjectionTarget> targets;
-        for (std::size_t i = 0; i < state_.proxies.size(); ++i) {
-            std::optional<Classification> closed;
-            if (i < state_.choices.size() && has_closed_form(state_.choices[i].chosen.type) && state_.choices[i].chosen.special)
-                closed = state_.choices[i].chosen.shape;
-            targets.push_back({state_.proxies[i].quadric, closed});
+        if (!projector_) {
+            std::vector<ProjectionTarget> targets;
+            for (std::size_t i = 0; i < state_.proxies.size(); ++i) {
+                std::optional<Classification> closed;
+                if (i < state_.choices.size() && has_closed_form(state_.choices[i].chosen.type) &&
+                    state_.choices[i].chosen.special)
+                    closed = state_.choices[i].chosen.shape;
+                targets.push_back({state_.proxies[i].quadric, closed});
+            }
+            projector_ = std::make_unique<Projector>(model_, state_.labels, targets, options_.max_projection_distance);
+            return true;
         }
-        state_.projected = project_vertices(model_, state_.labels, targets, options_.max_projection_distance);
+        if (projector_->step()) return true;
+        state_.projected = projector_->take();
         return false;
     }
 
@@ -181,6 +203,7 @@ private:
     const Model& model_;
     const Options& options_;
     State& state_;
+    std::unique_ptr<Projector> projector_;
 };
 
 class MeasureStage : public PipelineStage {
@@ -212,18 +235,24 @@ double elapsed(std::chrono::steady_clock::time_point since) {
 
 }  // namespace
 
-Pipeline::Pipeline(const Mesh& mesh, const Options& options) : source_face_(mesh.source_face), options_(options) {
+Pipeline::Pipeline(const Mesh& mesh, const Options& options) : Pipeline(mesh, nullptr, options) {}
+
+Pipeline::Pipeline(const Mesh& mesh, std::shared_ptr<const Model> shared, const Options& options)
+    : source_face_(mesh.source_face), options_(options) {
     validate(options_);
     if (mesh.triangles.empty()) throw std::invalid_argument("the mesh has no faces");
-    model_ = make_model(mesh);
+    if (shared && shared->face_count() != static_cast<int>(mesh.triangles.size()))
+        throw std::invalid_argument("the model was not made from this mesh");
+    shared_model_ = shared ? std::move(shared) : std::make_shared<const Model>(make_model(mesh));
+    check_proxy_count(model(), options_.lloyd);
     input_ = {mesh.input_vertex_count,      mesh.input_face_count,    static_cast<int>(mesh.triangles.size()),
-              model_.component_count,       bounding_box(mesh).diagonal(), model_.frame.scale};
-    stages_.push_back(std::make_unique<LloydStage>(model_, options_.lloyd, state_));
-    if (options_.smooth) stages_.push_back(std::make_unique<SmoothStage>(model_, options_, state_));
-    stages_.push_back(std::make_unique<RefitStage>(model_, options_, state_));
+              model().component_count,       bounding_box(mesh).diagonal(), model().frame.scale};
+    stages_.push_back(std::make_unique<LloydStage>(model(), options_.lloyd, state_));
+    if (options_.smooth) stages_.push_back(std::make_unique<SmoothStage>(model(), options_, state_));
+    stages_.push_back(std::make_unique<RefitStage>(model(), options_, state_));
     if (options_.project) {
-        stages_.push_back(std::make_unique<ProjectStage>(model_, options_, state_));
-        if (options_.measure) stages_.push_back(std::make_unique<MeasureStage>(model_, options_, state_));
+        stages_.push_back(std::make_unique<ProjectStage>(model(), options_, state_));
+        if (options_.measure) stages_.push_back(std::make_unique<MeasureStage>(model(), options_, state_));
     }
 }
 
@@ -232,7 +261,7 @@ Pipeline::~Pipeline() = default;
 Stage Pipeline::stage() const { return current_ < stages_.size() ? stages_[current_]->id() : Stage::done; }
 
 const std::vector<int>& Pipeline::face_labels() const {
-    return current_ == 0 && !stages_.empty() ? static_cast<const LloydStage&>(*stages_[0]).labels() : state_.labels;
+    return current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).labels() : state_.labels;
 }
 
 bool Pipeline::step() {
@@ -243,8 +272,10 @@ bool Pipeline::step() {
         if (current_ == 0) {
             // The Lloyd stage ends with a consistent partition; nothing runs after it.
             auto& lloyd = static_cast<LloydStage&>(*stages_[0]);
-            lloyd.cancel();
-            lloyd.step();
+            if (lloyd.lloyd()) {
+                lloyd.cancel();
+                lloyd.step();
+            }
         }
         state_.stop_reason = StopReason::cancelled;
         state_.phase = "done";
@@ -277,13 +308,13 @@ Progress Pipeline::progress() const {
     p.stage = stage();
     p.phase = state_.phase;
     p.iterations = state_.iterations;
-    if (current_ == 0 && !stages_.empty()) {
-        const Lloyd& lloyd = static_cast<const LloydStage&>(*stages_[0]).lloyd();
-        p.proxies = static_cast<int>(lloyd.proxies().size());
-        p.rms = lloyd.rms();
+    const Lloyd* lloyd = current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd() : nullptr;
+    if (current_ == 0) {
+        p.proxies = lloyd ? static_cast<int>(lloyd->proxies().size()) : 0;
+        p.rms = lloyd ? lloyd->rms() : 0;
     } else {
         p.proxies = static_cast<int>(state_.proxies.size());
-        p.rms = model_.total_area > 0 ? std::sqrt(std::max(0.0, state_.energy) / model_.total_area) : 0;
+        p.rms = model().total_area > 0 ? std::sqrt(std::max(0.0, state_.energy) / model().total_area) : 0;
     }
     p.fraction = done() ? 1 : stages_[current_]->fraction();
     return p;
@@ -297,7 +328,7 @@ Result Pipeline::result(double load_seconds) const {
     r.iterations = state_.iterations;
     const Progress now = progress();
     r.rms_error_relative = now.rms;
-    r.rms_error = now.rms * model_.frame.scale;
+    r.rms_error = now.rms * model().frame.scale;
     auto seconds = [&](Stage s) { return seconds_[static_cast<int>(s)]; };
     Timing& t = r.timing;
     t.load = load_seconds;
@@ -319,9 +350,9 @@ Result Pipeline::result(double load_seconds) const {
     r.labels = input_order(r.face_labels);
     r.lloyd_labels = input_order(r.lloyd_face_labels);
 
-    const Frame& frame = model_.frame;
-    const std::vector<Proxy>& proxies =
-        current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd().proxies() : state_.proxies;
+    const Frame& frame = model().frame;
+    const Lloyd* lloyd = current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd() : nullptr;
+    const std::vector<Proxy>& proxies = lloyd ? lloyd->proxies() : state_.proxies;
     for (int i = 0; i < static_cast<int>(proxies.size()); ++i) {
         const Proxy& p = proxies[i];
         ProxyResult out;

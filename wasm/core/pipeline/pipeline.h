@@ -37,6 +37,9 @@ class Pipeline {
 public:
     // Checks the options (std::invalid_argument) and builds the model.
     Pipeline(const Mesh& mesh, const Options& options);
+    // With the model made from `mesh` (make_model) by an earlier run: it depends on the
+    // mesh alone, so runs with other options share it.
+    Pipeline(const Mesh& mesh, std::shared_ptr<const Model> shared, const Options& options);
     ~Pipeline();
 
     // One bounded piece of work; false when the run is over.
@@ -49,7 +52,8 @@ public:
     bool done() const { return stage() == Stage::done; }
     Stage stage() const;
     Progress progress() const;
-    const Model& model() const { return model_; }
+    const Model& model() const { return *shared_model_; }
+    std::shared_ptr<const Model> shared_model() const { return shared_model_; }
     // The current region of every kept face (live during the run).
     const std::vector<int>& face_labels() const;
     // The run so far (complete once done()). `load_seconds` goes into its timing.
@@ -73,7 +77,7 @@ private:
     InputInfo input_;
     std::vector<int> source_face_;  // Mesh::source_face
     Options options_;
-    Model model_;
+    std::shared_ptr<const Model> shared_model_;
     State state_;
     std::vector<std::unique_ptr<PipelineStage>> stages_;
     std::size_t current_ = 0;

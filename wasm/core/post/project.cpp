@@ -245,32 +245,46 @@ Vec3 special_foot_point(const Classification& shape, const Vec3& p) {
     }
 }
 
-std::vector<Vec3> project_vertices(const Model& model, const std::vector<int>& labels,
-                                   const std::vector<ProjectionTarget>& targets, double max_distance) {
-    const std::size_t n = model.points.size();
-    // Each vertex's distinct proxies, from its faces.
-    std::vector<std::vector<int>> proxies_of(n);
-    for (int f = 0; f < model.face_count(); ++f)
-        for (int v : model.triangles[f]) {
-            std::vector<int>& list = proxies_of[v];
-            if (std::find(list.begin(), list.end(), labels[f]) == list.end()) list.push_back(labels[f]);
+Projector::Projector(const Model& model, const std::vector<int>& labels, const std::vector<ProjectionTarget>& targets,
+                     double max_distance, int vertices_per_step)
+    : model_(model), labels_(labels), targets_(targets), max_distance_(max_distance),
+      vertices_per_step_(std::max(1, vertices_per_step)), first_face_(model.points.size(), -1),
+      next_face_(3 * model.triangles.size(), -1), out_(model.points) {
+    for (const ProjectionTarget& t : targets_) solvers_.emplace_back(t.quadric);
+    // Corner k of face f is entry 3f + k of its vertex's list.
+    for (int f = model.face_count() - 1; f >= 0; --f)
+        for (int k = 0; k < 3; ++k) {
+            const int v = model.triangles[f][k];
+            next_face_[3 * f + k] = first_face_[v];
+            first_face_[v] = 3 * f + k;
         }
-    std::vector<FootPoint> solvers;
-    for (const ProjectionTarget& t : targets) solvers.emplace_back(t.quadric);
-    std::vector<Vec3> out(model.points);
-    for (std::size_t v = 0; v < n; ++v) {
+}
+
+bool Projector::step() {
+    const std::size_t end = std::min(out_.size(), next_ + vertices_per_step_);
+    std::vector<int> seen;
+    for (std::size_t v = next_; v < end; ++v) {
+        // The vertex's distinct proxies, from its faces.
+        seen.clear();
+        for (int corner = first_face_[v]; corner >= 0; corner = next_face_[corner]) {
+            const int proxy = labels_[corner / 3];
+            if (std::find(seen.begin(), seen.end(), proxy) == seen.end()) seen.push_back(proxy);
+        }
         Vec3 sum = Vec3::Zero();
         int count = 0;
-        for (int proxy : proxies_of[v]) {
-            const ProjectionTarget& t = targets[proxy];
-            const Vec3& p = model.points[v];
+        const Vec3& p = model_.points[v];
+        for (int proxy : seen) {
+            const ProjectionTarget& t = targets_[proxy];
             const std::optional<Vec3> foot =
-                t.special ? std::optional<Vec3>(special_foot_point(*t.special, p)) : solvers[proxy](p);
-            if (foot && (*foot - p).norm() <= max_distance) sum += *foot, ++count;
+                t.special ? std::optional<Vec3>(special_foot_point(*t.special, p)) : solvers_[proxy](p);
+            if (foot && (*foot - p).norm() <= max_distance_) sum += *foot, ++count;
         }
-        if (count > 0) out[v] = sum / count;
+        if (count > 0) out_[v] = sum / count;
     }
-    return out;
+    next_ = end;
+    return next_ < out_.size();
 }
+
+double Projector::fraction() const { return out_.empty() ? 1 : double(next_) / out_.size(); }
 
 }  // namespace vqsa

@@ -46,9 +46,27 @@ struct ProjectionTarget {
 
 // Every vertex moves to the mean of its foot points on the proxies of its faces.
 // Foot points farther than `max_distance` (unit frame) are ignored, a guard against
-// far-away roots; a vertex without any stays where it is. Returns positions in the
-// unit frame, one per model point.
-std::vector<Vec3> project_vertices(const Model& model, const std::vector<int>& labels,
-                                   const std::vector<ProjectionTarget>& targets, double max_distance);
+// far-away roots; a vertex without any stays where it is. In pieces of
+// `vertices_per_step` vertices; the model and labels must outlive the projector.
+class Projector {
+public:
+    Projector(const Model& model, const std::vector<int>& labels, const std::vector<ProjectionTarget>& targets,
+              double max_distance, int vertices_per_step = 50000);
+    bool step();  // false once every vertex is done
+    double fraction() const;
+    // Positions in the unit frame, one per model point, once step() has returned false.
+    std::vector<Vec3> take() { return std::move(out_); }
+
+private:
+    const Model& model_;
+    const std::vector<int>& labels_;
+    std::vector<ProjectionTarget> targets_;
+    std::vector<FootPoint> solvers_;
+    double max_distance_;
+    int vertices_per_step_;
+    std::vector<int> first_face_, next_face_;  // per vertex: its faces as a linked list
+    std::vector<Vec3> out_;
+    std::size_t next_ = 0;
+};
 
 }  // namespace vqsa

@@ -2,6 +2,7 @@
 // two surfaces explain alike go to the side that lets its neighbour be a simpler type.
 #pragma once
 
+#include "fitting/face_errors.h"
 #include "fitting/fit.h"
 #include "fitting/model_selection.h"
 #include "geometry/model.h"
@@ -33,8 +34,31 @@ struct SeamOptions {
 // when without them it selects a type of fewer parameters and the neighbour keeps its
 // type: the same fit, fewer parameters. `choices` (from select_model, per region) and
 // `proxies` (quadric, moments, faces, area) are updated for the regions that change.
-// `crease`: per dual-graph link, optional. Returns the number of faces moved.
-int simplify_seams(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
+// One region per step; the arrays must outlive the simplifier.
+class SeamSimplifier {
+public:
+    // `crease`: per dual-graph link, optional.
+    SeamSimplifier(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
                    std::vector<ModelChoice>& choices, const std::vector<char>* crease, const SeamOptions& options);
+    ~SeamSimplifier();
+    bool step();  // false once every region is done
+    double fraction() const;
+    int moved() const { return moved_; }  // faces given to a neighbour so far
+
+private:
+    void simplify(int a);
+
+    struct Region;
+    const Model& model_;
+    std::vector<int>& labels_;
+    std::vector<Proxy>& proxies_;
+    std::vector<ModelChoice>& choices_;
+    const std::vector<char>* crease_;
+    SeamOptions options_;
+    FaceErrors evaluator_;
+    std::vector<Region> regions_;
+    std::vector<char> in_strip_;  // scratch, per face
+    int next_ = 0, moved_ = 0;
+};
 
 }  // namespace vqsa
