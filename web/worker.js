@@ -1,7 +1,8 @@
 // The module worker that owns the WASM instance. Protocol (every request carries an id):
 //   in:  {type:'load', id, bytes, name} | {type:'example', id, name} | {type:'run', id, options} | {type:'cancel'}
 //   out: {type:'loaded', id, info, positions, triangles, sourceFaces, legend, examples}
-//        {type:'progress', id, phase, proxies, iteration, rms, labels}   (≤ 25 per second)
+//        {type:'progress', id, stage, phase, proxies, iteration, rms, fraction, labels}
+//          (each new stage and operation, else ≤ 25 per second)
 //        {type:'result', id, ...}  {type:'cancelled', id}  {type:'error', id, message, fatal}
 import createVqsaModule from './vqsa.mjs';
 
@@ -39,18 +40,20 @@ function progress(id) {
 async function run(id, options) {
   session.start(options);
   cancelRequested = false;
-  let lastPost = 0, lastPhase = '';
+  let lastPost = 0, lastPhase = '', lastStage = '';
   for (let more = true; more;) {
     more = session.stepFor(SLICE_MS);
     const p = session.progress();
     const now = performance.now();
-    // Operations (insert, split, merge, teleport) always show; Lloyd and smoothing steps are throttled.
+    // A new stage and operations (insert, split, merge, teleport) always show; Lloyd
+    // iterations and progress within a stage are throttled.
     const operation = p.phase !== lastPhase && !['lloyd', 'smooth'].includes(p.phase);
-    if (more && (operation || now - lastPost >= PROGRESS_INTERVAL_MS)) {
+    if (more && (operation || p.stage !== lastStage || now - lastPost >= PROGRESS_INTERVAL_MS)) {
       progress(id);
       lastPost = now;
     }
     lastPhase = p.phase;
+    lastStage = p.stage;
     await yieldToEvents();
     if (cancelRequested && more) {
       session.cancel();

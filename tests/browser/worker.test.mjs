@@ -73,8 +73,9 @@ test('cancelling mid-run, then running again, works', async () => {
 test('a mesh beyond the browser\'s memory fails with a clear message, and the next run works', async () => {
   const outcome = await page.evaluate(async () => {
     const client = new window.VqsaClient();
-    await client.loadExample('turned_part:20000000');
-    const failure = await client.run({ proxies: 50 }).then(() => 'finished', (e) => e.message);
+    // Reading it fits; its model (adjacency, moments) or the run does not.
+    const failure = await client.loadExample('turned_part:20000000').then(() => client.run({ proxies: 50 }))
+      .then(() => 'finished', (e) => e.message);
     await client.loadExample('capsule');
     const next = await client.run({ proxies: 3 });
     client.terminate();
@@ -82,4 +83,32 @@ test('a mesh beyond the browser\'s memory fails with a clear message, and the ne
   });
   assert.match(outcome.failure, /out of memory: the mesh is too large for this browser/);
   assert.equal(outcome.proxies, 3);
+});
+
+test('a cancel is acknowledged within 100 ms in every stage of a 100K-face run', async (t) => {
+  const latencies = await page.evaluate(async () => {
+    const client = new window.VqsaClient();
+    await client.loadExample('flange:100000');
+    const out = {};
+    for (const stage of ['lloyd', 'smooth', 'refit', 'project', 'measure']) {
+      let sent = null;
+      const run = client.run({ proxies: 7 }, {
+        onProgress: (p) => {
+          if (sent === null && p.stage === stage) {
+            sent = performance.now();
+            client.cancel();
+          }
+        },
+      });
+      const outcome = await run.then(() => 'finished', (e) => e.name);
+      out[stage] = { outcome, ms: sent === null ? null : performance.now() - sent };
+    }
+    client.terminate();
+    return out;
+  });
+  t.diagnostic(`cancel latency in Chromium (ms): ${Object.entries(latencies).map(([s, l]) => `${s} ${l.ms?.toFixed(0)}`).join(', ')}`);
+  for (const [stage, { outcome, ms }] of Object.entries(latencies)) {
+    assert.equal(outcome, 'AbortError', `${stage}: ${outcome}`);
+    assert.ok(ms <= 100, `${stage}: cancel took ${ms.toFixed(0)} ms`);
+  }
 });

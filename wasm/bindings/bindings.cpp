@@ -175,9 +175,13 @@ private:
         pipeline_.reset();
         result_.reset();
         model_.reset();
-        mesh_ = std::make_unique<Mesh>(std::move(mesh));
+        mesh_.reset();
         // Built once per mesh: every run on it shares the model, and starting one is quick.
-        if (!mesh_->triangles.empty()) model_ = std::make_shared<const Model>(make_model(*mesh_));
+        // Nothing is kept when it fails (out of memory): the session has no mesh then.
+        std::shared_ptr<const Model> model;
+        if (!mesh.triangles.empty()) model = std::make_shared<const Model>(make_model(mesh));
+        mesh_ = std::make_unique<Mesh>(std::move(mesh));
+        model_ = std::move(model);
         load_seconds_ = (emscripten_get_now() - started) / 1000;
         val info = val::object();
         info.set("vertices", mesh_->input_vertex_count);
