@@ -226,6 +226,15 @@ export function createViewer(root, options = {}) {
     errorBox.textContent = '';
   }
 
+  // The bar over a whole run: the Lloyd stage to 70 %, then the post-processing stages in
+  // equal shares, each by its own fraction done (progress events carry both).
+  const POST_STAGES = ['smooth', 'refit', 'project', 'measure'];
+  function runFraction(p) {
+    if (p.stage === 'lloyd') return p.fraction > 0 ? 0.7 * p.fraction : null;  // automatic count: unknown
+    const index = POST_STAGES.indexOf(p.stage);
+    return index < 0 ? 1 : 0.7 + 0.3 * (index + p.fraction) / POST_STAGES.length;
+  }
+
   function setStatus(text, fraction = null) {
     status.textContent = text;
     bar.style.width = fraction === null ? '0' : `${Math.round(100 * Math.min(Math.max(fraction, 0), 1))}%`;
@@ -572,8 +581,9 @@ export function createViewer(root, options = {}) {
           live = p.labels;
           root.dataset.proxies = String(p.proxies);
           if (p.phase !== 'smooth' && !p.lloydDone) history.push([p.proxies, p.rms]);
-          const fraction = target ? Math.min(p.proxies / target, 1) * (p.lloydDone ? 1 : 0.9) : null;
-          setStatus(`${p.phase} · ${p.proxies} proxies · iteration ${p.iteration} · RMS ${format(p.rms)}`, fraction);
+          setStatus(p.stage === 'lloyd'
+            ? `${p.phase} · ${p.proxies} proxies · iteration ${p.iteration} · RMS ${format(p.rms)}`
+            : `${p.stage} ${Math.round(100 * p.fraction)} % · ${p.proxies} proxies`, runFraction(p));
           paint();
           drawPlot();
           api.dispatchEvent(new CustomEvent('progress', { detail: p }));

@@ -32,17 +32,17 @@ TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Tr
     }
 }
 
-TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles, Deferred) {
+TriangleTree::TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles, Deferred)
+    : points_(&points), triangles_(&triangles) {
     const int n = static_cast<int>(triangles.size());
     order_.resize(n);
-    corners_.resize(n);
     centers_.resize(n);
     for (int i = 0; i < n; ++i) {
         order_[i] = i;
-        for (int k = 0; k < 3; ++k) corners_[i][k] = points[triangles[i][k]];
-        centers_[i] = (corners_[i][0] + corners_[i][1] + corners_[i][2]) / 3;
+        centers_[i] = (points[triangles[i][0]] + points[triangles[i][1]] + points[triangles[i][2]]) / 3;
     }
-    nodes_.reserve(2 * std::max(n, 1));
+    // Leaves hold 2 to 4 triangles, so there are at most n nodes.
+    nodes_.reserve(std::max(n, 1));
     if (n > 0) pending_.push_back({0, n, -1});
     else finish();
 }
@@ -62,7 +62,7 @@ bool TriangleTree::build_some(long budget) {
         Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
         Vec3 clo = lo, chi = hi;
         for (int i = first; i < first + count; ++i) {
-            for (const Vec3& v : corners_[order_[i]]) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+            for (int v : (*triangles_)[order_[i]]) lo = lo.cwiseMin((*points_)[v]), hi = hi.cwiseMax((*points_)[v]);
             clo = clo.cwiseMin(centers_[order_[i]]), chi = chi.cwiseMax(centers_[order_[i]]);
         }
         nodes_[index].min = lo;
@@ -89,19 +89,17 @@ bool TriangleTree::build_some(long budget) {
 }
 
 void TriangleTree::finish() {
-    // Corners in tree order.
-    const int n = static_cast<int>(order_.size());
-    std::vector<std::array<Vec3, 3>> sorted(n);
-    slot_.resize(n);
-    for (int i = 0; i < n; ++i) sorted[i] = corners_[order_[i]], slot_[order_[i]] = i;
-    corners_ = std::move(sorted);
     centers_ = {};
+    const int n = static_cast<int>(order_.size());
+    slot_.resize(n);
+    for (int i = 0; i < n; ++i) slot_[order_[i]] = i;
     built_ = true;
 }
 
 void TriangleTree::visit(const Vec3& p, int slot, double& best2, Hit& best) const {
-    const std::array<Vec3, 3>& t = corners_[slot];
-    const Vec3 q = closest_point_on_triangle(p, t[0], t[1], t[2]);
+    const Triangle& t = (*triangles_)[order_[slot]];
+    const std::vector<Vec3>& points = *points_;
+    const Vec3 q = closest_point_on_triangle(p, points[t[0]], points[t[1]], points[t[2]]);
     const double d2 = (q - p).squaredNorm();
     // Ties go to the lower triangle index, so the answer does not depend on the hint.
     if (d2 < best2 || (d2 == best2 && order_[slot] < best.triangle)) best2 = d2, best = {q, 0, order_[slot]};

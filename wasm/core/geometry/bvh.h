@@ -3,7 +3,6 @@
 
 #include "io/mesh.h"
 
-#include <array>
 #include <vector>
 
 namespace vqsa {
@@ -15,6 +14,7 @@ class TriangleTree {
 public:
     TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles);
     // A tree built in pieces: build_some() until it returns false (queries need it built).
+    // Either way, the tree refers to the points and triangles: they must outlive it.
     struct Deferred {};
     TriangleTree(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles, Deferred);
     // Builds nodes until about `budget` triangles have been partitioned; false once built.
@@ -42,12 +42,13 @@ private:
     void finish();
     void visit(const Vec3& p, int slot, double& best2, Hit& best) const;
 
-    // Triangles in tree order, their corners copied so a leaf reads contiguous memory.
-    std::vector<int> order_, slot_;  // slot → triangle, triangle → slot
-    std::vector<std::array<Vec3, 3>> corners_;
+    const std::vector<Vec3>* points_;
+    const std::vector<Triangle>* triangles_;
+    std::vector<int> order_, slot_;  // slot (tree order) → triangle, triangle → slot
     std::vector<Node> nodes_;
-    std::vector<Vec3> centers_;   // while building
-    std::vector<Range> pending_;  // while building
+    // While building:
+    std::vector<Vec3> centers_;
+    std::vector<Range> pending_;
     bool built_ = false;
 };
 

@@ -66,6 +66,7 @@ public:
         state_.proxies = lloyd_->proxies();
         state_.energy = lloyd_->energy();
         if (options_.init == Initialization::features) state_.crease = lloyd_->features().crease;
+        lloyd_.reset();  // a finished stage's working memory goes (on large meshes, hundreds of MB)
         return false;
     }
 
@@ -93,6 +94,7 @@ public:
                                                            seeds_of(state_.proxies), options_.smoothing,
                                                            state_.crease.empty() ? nullptr : &state_.crease);
         if (smoother_->step()) return true;
+        smoother_.reset();
         // Straighter boundaries are worth a little distance, not a worse fit: when the
         // regions refitted to their new faces lie farther from them by more than a tenth,
         // the Lloyd boundaries stay.
@@ -157,6 +159,7 @@ public:
             simplifier_ = std::make_unique<SeamSimplifier>(model_, state_.labels, state_.proxies, state_.choices,
                                                            state_.crease.empty() ? nullptr : &state_.crease, seams_);
         if (simplifier_->step()) return true;
+        simplifier_.reset();
         FaceErrors evaluator;
         std::vector<double> errors;
         state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
@@ -196,6 +199,7 @@ public:
         }
         if (projector_->step()) return true;
         state_.projected = projector_->take();
+        projector_.reset();
         return false;
     }
 
@@ -219,6 +223,7 @@ public:
                                                          static_cast<int>(state_.proxies.size()), options_.metrics);
         if (measurement_->step()) return true;
         state_.metrics = measurement_->result();
+        measurement_.reset();
         return false;
     }
 
