@@ -61,14 +61,20 @@ private:
     struct Accumulator;
     struct Sweep;
     struct Surface {
+        Surface(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles);
         const std::vector<Vec3>& points;
         const std::vector<Triangle>& triangles;
         std::vector<double> areas;
         std::unique_ptr<TriangleTree> tree;
         std::vector<int> vertex_face;  // a face of each vertex (a search hint), or -1
+        std::vector<double> vertex_distance;  // of each vertex to the other surface
+        std::vector<double> density, weight;  // per triangle, of the samples (set_densities)
+        double total_density = 0;
     };
+    void set_densities();
     void start_sweeps(int samples, std::uint64_t seed);
     long planned_queries() const;
+    double mean_squared() const;           // of the distances, weighted, over every sweep
     double pooled_standard_error() const;  // of the pooled mean of squared distances
 
     Surface a_, b_;
@@ -77,8 +83,7 @@ private:
     MetricsOptions options_;
     int queries_per_step_;
     double diagonal_ = 0;
-    std::size_t next_vertex_ = 0;          // over a's vertices then b's
-    std::vector<double> vertex_distance_;  // b's vertices to a (absolute)
+    std::size_t next_vertex_ = 0;  // over a's vertices then b's
     double vertex_max_ = 0;
     std::vector<Accumulator> region_;
     std::vector<std::unique_ptr<Sweep>> sweeps_;  // pairs: a's then b's
