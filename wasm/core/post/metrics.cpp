@@ -55,10 +55,7 @@ struct Measurement::Accumulator {
 // as fast as random order). Each sample weighs the ratio of its triangle's area share to
 // its density share, so the weighted mean is the area mean (importance sampling).
 struct Measurement::Sweep {
-    const std::vector<Vec3>& from;
-    const std::vector<Triangle>& triangles;
-    const std::vector<double>& areas;    // the sampling densities
-    const std::vector<double>& weights;
+    const Surface& surface;
     const TriangleTree& to;
     bool hinted;
     int samples;
@@ -72,36 +69,38 @@ struct Measurement::Sweep {
     double last2 = 0, differences = 0;
     Accumulator total;
 
-    Sweep(const Surface& surface, const TriangleTree& to, bool hinted, int samples, double total_density,
-          std::uint64_t seed)
-        : from(surface.points), triangles(surface.triangles), areas(surface.density), weights(surface.weight), to(to),
-          hinted(hinted), samples(samples), rng(seed), spacing(total_density / samples), next(uniform() * spacing) {}
+    Sweep(const Surface& surface, const TriangleTree& to, bool hinted, int samples, std::uint64_t seed)
+        : surface(surface), to(to), hinted(hinted), samples(samples), rng(seed),
+          spacing(surface.total_density / samples), next(uniform() * spacing) {}
 
     double uniform() { return (rng.next() >> 11) * (1.0 / 9007199254740992.0); }
-    bool finished() const { return drawn >= samples || triangle >= triangles.size(); }
+    bool finished() const { return drawn >= samples || triangle >= surface.triangles.size(); }
 
     // Draws at most `budget` samples; returns how many.
     int run(int budget, const std::vector<int>* labels, std::vector<Accumulator>& regions) {
+        const std::vector<Vec3>& from = surface.points;
+        const std::vector<Triangle>& triangles = surface.triangles;
         const int start = drawn;
         for (; triangle < triangles.size() && drawn < samples && drawn - start < budget; ++triangle) {
             const std::size_t t = triangle;
-            if (next >= swept + areas[t]) {
-                swept += areas[t];
+            const double density = surface.density(t), weight = surface.weight(t);
+            if (next >= swept + density) {
+                swept += density;
                 continue;
             }
-            for (; next < swept + areas[t] && drawn < samples && drawn - start < budget; next += spacing, ++drawn) {
+            for (; next < swept + density && drawn < samples && drawn - start < budget; next += spacing, ++drawn) {
                 const double r1 = std::sqrt(uniform()), r2 = uniform();
                 const Triangle& tri = triangles[t];
                 const Vec3 p = (1 - r1) * from[tri[0]] + r1 * (1 - r2) * from[tri[1]] + r1 * r2 * from[tri[2]];
                 const double d = to.nearest(p, hinted ? static_cast<int>(t) : -1).distance;
-                const double y = weights[t] * d * d;
+                const double y = weight * d * d;
                 if (total.count > 0) differences += (y - last2) * (y - last2);
                 last2 = y;
-                total.add(d, weights[t]);
-                if (labels && (*labels)[t] >= 0) regions[(*labels)[t]].add(d, weights[t]);
+                total.add(d, weight);
+                if (labels && (*labels)[t] >= 0) regions[(*labels)[t]].add(d, weight);
             }
-            if (next < swept + areas[t]) break;  // out of budget inside this triangle
-            swept += areas[t];
+            if (next < swept + density) break;  // out of budget inside this triangle
+            swept += density;
         }
         return drawn - start;
     }
@@ -138,30 +137,33 @@ void Measurement::set_densities() {
         const std::size_t n = s->triangles.size();
         std::vector<double> corner(n, 0.0);
         double area = 0, mean = 0;
+        const Surface& other = s == &a_ ? b_ : a_;
         for (std::size_t t = 0; t < n; ++t) {
             for (int v : s->triangles[t]) {
                 corner[t] += s->vertex_distance[v] * s->vertex_distance[v];
                 // Both surfaces' corners of a shared triangle.
-                if (shared_) corner[t] += (s == &a_ ? b_ : a_).vertex_distance[v] * (s == &a_ ? b_ : a_).vertex_distance[v];
+                if (shared_) corner[t] += other.vertex_distance[v] * other.vertex_distance[v];
             }
             corner[t] /= shared_ ? 6 : 3;
             area += s->areas[t];
             mean += s->areas[t] * corner[t];
         }
         const double epsilon = area > 0 && mean > 0 ? mean / area : 1;
-        s->density.resize(n);
-        s->weight.resize(n);
+        s->area = area;
         s->total_density = 0;
-        for (std::size_t t = 0; t < n; ++t) s->total_density += s->density[t] = s->areas[t] * (epsilon + corner[t]);
-        for (std::size_t t = 0; t < n; ++t) s->weight[t] = s->total_density / (area * (epsilon + corner[t]));
+        for (std::size_t t = 0; t < n; ++t) {
+            corner[t] += epsilon;
+            s->total_density += s->areas[t] * corner[t];
+        }
+        s->factor = std::move(corner);
     }
 }
 
 void Measurement::start_sweeps(int samples, std::uint64_t seed) {
-    if (a_.density.empty()) set_densities();
+    if (a_.factor.empty()) set_densities();
     if (!(a_.total_density > 0) || !(b_.total_density > 0) || samples <= 0) return;
-    sweeps_.push_back(std::make_unique<Sweep>(a_, *b_.tree, shared_, samples, a_.total_density, seed));
-    sweeps_.push_back(std::make_unique<Sweep>(b_, *a_.tree, shared_, samples, b_.total_density, seed + 1));
+    sweeps_.push_back(std::make_unique<Sweep>(a_, *b_.tree, shared_, samples, seed));
+    sweeps_.push_back(std::make_unique<Sweep>(b_, *a_.tree, shared_, samples, seed + 1));
 }
 
 long Measurement::planned_queries() const {
@@ -206,9 +208,9 @@ bool Measurement::step() {
         for (std::size_t i = next_vertex_; i < end; ++i) {
             const bool from_a = i < a_.points.size();
             const std::size_t v = from_a ? i : i - a_.points.size();
-            const TriangleTree& to = from_a ? *b_.tree : *a_.tree;
-            if ((from_a ? a_ : b_).vertex_face[v] < 0) continue;  // on no face: not on the surface
             Surface& surface = from_a ? a_ : b_;
+            const TriangleTree& to = from_a ? *b_.tree : *a_.tree;
+            if (surface.vertex_face[v] < 0) continue;  // on no face: not on the surface
             surface.vertex_distance[v] = to.nearest(surface.points[v], shared_ ? surface.vertex_face[v] : -1).distance;
             vertex_max_ = std::max(vertex_max_, surface.vertex_distance[v]);
         }

@@ -68,8 +68,12 @@ private:
         std::unique_ptr<TriangleTree> tree;
         std::vector<int> vertex_face;  // a face of each vertex (a search hint), or -1
         std::vector<double> vertex_distance;  // of each vertex to the other surface
-        std::vector<double> density, weight;  // per triangle, of the samples (set_densities)
-        double total_density = 0;
+        // Sampling density per unit area, per triangle (set_densities); a sample of triangle t
+        // weighs its area share over its density share.
+        std::vector<double> factor;
+        double area = 0, total_density = 0;
+        double density(std::size_t t) const { return areas[t] * factor[t]; }
+        double weight(std::size_t t) const { return total_density / (area * factor[t]); }
     };
     void set_densities();
     void start_sweeps(int samples, std::uint64_t seed);
