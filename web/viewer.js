@@ -447,8 +447,13 @@ export function createViewer(root, options = {}) {
     settings.automatic = false;
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
   });
-  gui.add(settings, 'useTolerance').name('stop on tolerance');
-  gui.add(settings, 'tolerance', 1e-4, 0.05, 1e-4).name('tolerance (RMS)');
+  gui.add(settings, 'useTolerance').name('stop on tolerance').onChange(() => syncControls());
+  const toleranceControl = gui.add(settings, 'tolerance', 1e-4, 0.05, 1e-4).name('tolerance (RMS)');
+  // The tolerance only matters when the run stops on it.
+  function syncControls() {
+    toleranceControl.enable(settings.useTolerance);
+  }
+  syncControls();
   gui.add(settings, 'rings', 1, 5, 1).name('smoothing rings');
   gui.add(settings, 'lambda', 0, 20, 0.1).name('smoothing λ');
   gui.add(settings, 'seed', 0, 1000, 1).name('seed');
@@ -563,6 +568,7 @@ export function createViewer(root, options = {}) {
     }
     Object.assign(settings, rest);
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    syncControls();
     return guarded(async (current) => {
       if (!mesh) throw new Error('open a mesh first');
       clearError();

@@ -225,3 +225,16 @@ test('a dropped CAD mesh runs with the automatic count until a count is chosen',
   assert.deepEqual(consoleErrors, []);
   await fresh.close();
 });
+
+test('the tolerance field is active only while the run stops on tolerance', async () => {
+  const fresh = await openPage('index.html');
+  await waitFor(fresh, ['done']);
+  const tolerance = fresh.locator('.lil-gui .controller', { hasText: 'tolerance (RMS)' });
+  const stopOnTolerance = fresh.locator('.lil-gui .controller', { hasText: 'stop on tolerance' }).locator('input');
+  assert.equal(await tolerance.evaluate((e) => e.classList.contains('disabled')), true);
+  await stopOnTolerance.check();
+  assert.equal(await tolerance.evaluate((e) => e.classList.contains('disabled')), false);
+  await stopOnTolerance.uncheck();
+  assert.equal(await tolerance.evaluate((e) => e.classList.contains('disabled')), true);
+  await fresh.close();
+});
