@@ -632,10 +632,26 @@ export function createViewer(root, options = {}) {
     if (fileInput.files[0]) load(fileInput.files[0]).then(() => root.dataset.state !== 'error' && run(countChosen ? {} : { automatic: true }));
     fileInput.value = '';
   });
-  examples.addEventListener('change', () => {
+  function chooseExample() {
     const name = examples.value;
     examples.value = '';
     if (name) loadExample(name).then(() => root.dataset.state !== 'error' && run());
+  }
+  // With its list closed, a select changes value (and fires change) at every arrow key: a
+  // choice made by keys loads on Enter, and leaving the select drops it; a click loads at once.
+  let browsingByKeys = false;
+  examples.addEventListener('keydown', (e) => {
+    if (e.key === 'Enter' && browsingByKeys) {
+      browsingByKeys = false;
+      chooseExample();
+    } else if (!e.altKey && /^(Arrow|Home$|End$|Page)/.test(e.key)) {
+      browsingByKeys = true;
+    }
+  });
+  examples.addEventListener('change', () => browsingByKeys || chooseExample());
+  examples.addEventListener('blur', () => {
+    if (browsingByKeys) examples.value = '';
+    browsingByKeys = false;
   });
   runButton.addEventListener('click', () => run());
   cancelButton.addEventListener('click', cancel);

@@ -238,3 +238,29 @@ test('the tolerance field is active only while the run stops on tolerance', asyn
   assert.equal(await tolerance.evaluate((e) => e.classList.contains('disabled')), true);
   await fresh.close();
 });
+
+test('arrow keys browse the examples; Enter loads one, leaving the list loads none', async () => {
+  const fresh = await openPage('index.html');
+  await waitFor(fresh, ['done']);
+  const name = () => fresh.textContent('.vqsa-mesh-name');
+  const before = await name();
+  const examples = fresh.locator('select[aria-label="Examples"]');
+  await examples.focus();
+  await fresh.keyboard.press('ArrowDown');
+  await fresh.keyboard.press('ArrowDown');
+  await fresh.waitForTimeout(300);
+  assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-state'), 'done');
+  assert.equal(await name(), before);
+  await fresh.keyboard.press('Tab');  // leaving drops the choice
+  await fresh.waitForTimeout(300);
+  assert.equal(await name(), before);
+  await examples.focus();
+  await fresh.keyboard.press('ArrowDown');  // the list's first example is the one shown
+  await fresh.keyboard.press('ArrowDown');
+  await fresh.keyboard.press('Enter');
+  await waitFor(fresh, ['loading', 'running']);
+  await waitFor(fresh, ['done']);
+  assert.notEqual(await name(), before);
+  assert.deepEqual(consoleErrors, []);
+  await fresh.close();
+});
