@@ -210,7 +210,8 @@ export function createViewer(root, options = {}) {
     root.dataset.state = state;
     runButton.disabled = !mesh || state === 'running' || state === 'loading';
     cancelButton.disabled = state !== 'running';
-    glbButton.disabled = reportButton.disabled = !(state === 'done' && result);
+    // After a failed load the result shown is still the worker's: it stays downloadable.
+    glbButton.disabled = reportButton.disabled = !(result && (state === 'done' || state === 'error'));
     api.dispatchEvent(new CustomEvent('state', { detail: state }));
   }
 
@@ -521,29 +522,41 @@ export function createViewer(root, options = {}) {
   }
 
   async function load(source, name) {
+    // A file that fails to load changes nothing: the worker keeps the mesh and result shown,
+    // and so does the page (its status line and downloads too), under the error.
+    const shown = { text: status.textContent, width: bar.style.width };
     return guarded(async (current) => {
-      clearError();
-      setState('loading');
-      let bytes = source, fileName = name;
-      if (typeof source === 'string') {
-        const url = new URL(source, document.baseURI);
-        fileName ??= decodeURIComponent(url.pathname.split('/').pop());
-        setStatus(`downloading ${fileName}…`);
-        const response = await fetch(url);
-        if (!response.ok) throw new Error(`${fileName}: could not fetch it (${response.status})`);
-        bytes = await response.arrayBuffer();
-      } else if (source instanceof Blob) {
-        fileName ??= source.name;
-        if (source.size > MAX_FILE_BYTES) throw new Error(`${fileName}: ${(source.size / 1024 ** 3).toFixed(1)} GB is more than this browser can hold`);
-        bytes = await source.arrayBuffer();
+      try {
+        return await loadNow(source, name, current);
+      } catch (e) {
+        if (current()) status.textContent = shown.text, bar.style.width = shown.width;
+        throw e;
       }
-      setStatus(`reading ${fileName}…`);
-      const loaded = await client.load(bytes, fileName);
-      if (!current()) return null;
-      await receiveMesh(loaded, fileName);
-      setState('idle');
-      return mesh.info;
     });
+  }
+
+  async function loadNow(source, name, current) {
+    clearError();
+    setState('loading');
+    let bytes = source, fileName = name;
+    if (typeof source === 'string') {
+      const url = new URL(source, document.baseURI);
+      fileName ??= decodeURIComponent(url.pathname.split('/').pop());
+      setStatus(`downloading ${fileName}…`);
+      const response = await fetch(url);
+      if (!response.ok) throw new Error(`${fileName}: could not fetch it (${response.status})`);
+      bytes = await response.arrayBuffer();
+    } else if (source instanceof Blob) {
+      fileName ??= source.name;
+      if (source.size > MAX_FILE_BYTES) throw new Error(`${fileName}: ${(source.size / 1024 ** 3).toFixed(1)} GB is more than this browser can hold`);
+      bytes = await source.arrayBuffer();
+    }
+    setStatus(`reading ${fileName}…`);
+    const loaded = await client.load(bytes, fileName);
+    if (!current()) return null;
+    await receiveMesh(loaded, fileName);
+    setState('idle');
+    return mesh.info;
   }
 
   async function loadExample(name) {

@@ -264,3 +264,19 @@ test('arrow keys browse the examples; Enter loads one, leaving the list loads no
   assert.deepEqual(consoleErrors, []);
   await fresh.close();
 });
+
+test('a file that fails to load leaves the model, status and downloads as they were', async () => {
+  const fresh = await openPage('index.html');
+  await waitFor(fresh, ['done']);
+  const name = await fresh.textContent('.vqsa-mesh-name');
+  const status = await fresh.textContent('.vqsa-status');
+  await drop(fresh, 'junk.stl', { text: 'not a mesh' });
+  await waitFor(fresh, ['error']);
+  assert.match(await fresh.textContent('.vqsa-error'), /junk\.stl/);
+  assert.equal(await fresh.textContent('.vqsa-mesh-name'), name);
+  assert.equal(await fresh.textContent('.vqsa-status'), status);
+  assert.equal(await fresh.isEnabled('button:has-text("GLB")'), true);
+  assert.equal(await fresh.isEnabled('button:has-text("Run")'), true);
+  assert.deepEqual(consoleErrors, []);
+  await fresh.close();
+});
