@@ -599,7 +599,7 @@ export function createViewer(root, options = {}) {
           if (!current()) return;
           live = p.labels;
           root.dataset.proxies = String(p.proxies);
-          if (p.phase !== 'smooth' && !p.lloydDone) history.push([p.proxies, p.rms]);
+          if (p.stage === 'lloyd') history.push([p.proxies, p.rms]);
           setStatus(p.stage === 'lloyd'
             ? `${p.phase} · ${p.proxies} proxies · iteration ${p.iteration} · RMS ${format(p.rms)}`
             : `${p.stage} ${Math.round(100 * p.fraction)} % · ${p.proxies} proxies`, runFraction(p));

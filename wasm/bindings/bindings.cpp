@@ -111,7 +111,6 @@ public:
             out.set("iteration", now.iterations);
             out.set("rms", now.rms);
             out.set("fraction", now.fraction);
-            out.set("lloydDone", now.stage != Stage::lloyd);
             out.set("done", p.done());
             return out;
         });

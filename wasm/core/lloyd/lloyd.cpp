@@ -131,7 +131,6 @@ std::vector<int> seeds_of(const std::vector<Proxy>& proxies) {
 }
 
 void check_proxy_count(const Model& model, const LloydOptions& options) {
-    validate(options);
     if (model.face_count() == 0) throw std::invalid_argument("the mesh has no faces");
     if (options.proxies > model.face_count())
         throw std::invalid_argument("proxies (" + std::to_string(options.proxies) + ") exceeds the number of faces (" +
@@ -140,6 +139,7 @@ void check_proxy_count(const Model& model, const LloydOptions& options) {
 
 Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     : model_(model), options_(options), rng_(options.seed) {
+    validate(options_);
     check_proxy_count(model, options_);
     FeatureOptions features = options_.features;
     if (options_.init == Initialization::paper) features.crease_angle = 180;

@@ -116,7 +116,7 @@ std::vector<int> seeds_of(const std::vector<Proxy>& proxies);
 
 // The Lloyd stage on one model. Each step() is one unit of work: a Lloyd iteration or a
 // proxy operation.
-// The options' own checks, and a proxy count the model can hold (std::invalid_argument).
+// A mesh with faces, and a proxy count it can hold (std::invalid_argument).
 void check_proxy_count(const Model& model, const LloydOptions& options);
 
 class Lloyd {

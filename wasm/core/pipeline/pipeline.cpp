@@ -265,6 +265,10 @@ Pipeline::~Pipeline() = default;
 
 Stage Pipeline::stage() const { return current_ < stages_.size() ? stages_[current_]->id() : Stage::done; }
 
+const Lloyd* Pipeline::running_lloyd() const {
+    return current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd() : nullptr;
+}
+
 const std::vector<int>& Pipeline::face_labels() const {
     return current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).labels() : state_.labels;
 }
@@ -313,7 +317,7 @@ Progress Pipeline::progress() const {
     p.stage = stage();
     p.phase = state_.phase;
     p.iterations = state_.iterations;
-    const Lloyd* lloyd = current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd() : nullptr;
+    const Lloyd* lloyd = running_lloyd();
     if (current_ == 0) {
         p.proxies = lloyd ? static_cast<int>(lloyd->proxies().size()) : 0;
         p.rms = lloyd ? lloyd->rms() : 0;
@@ -356,7 +360,7 @@ Result Pipeline::result(double load_seconds) const {
     r.lloyd_labels = input_order(r.lloyd_face_labels);
 
     const Frame& frame = model().frame;
-    const Lloyd* lloyd = current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd() : nullptr;
+    const Lloyd* lloyd = running_lloyd();
     const std::vector<Proxy>& proxies = lloyd ? lloyd->proxies() : state_.proxies;
     for (int i = 0; i < static_cast<int>(proxies.size()); ++i) {
         const Proxy& p = proxies[i];

@@ -53,7 +53,6 @@ public:
     Stage stage() const;
     Progress progress() const;
     const Model& model() const { return *shared_model_; }
-    std::shared_ptr<const Model> shared_model() const { return shared_model_; }
     // The current region of every kept face (live during the run).
     const std::vector<int>& face_labels() const;
     // The run so far (complete once done()). `load_seconds` goes into its timing.
@@ -74,6 +73,8 @@ public:
     };
 
 private:
+    const Lloyd* running_lloyd() const;  // the Lloyd engine while its stage runs, else null
+
     InputInfo input_;
     std::vector<int> source_face_;  // Mesh::source_face
     Options options_;

@@ -54,85 +54,82 @@ void SeamSimplifier::simplify(int a) {
         return select_model(thinned(vertex_samples(model_.points, model_.triangles, rest), options_.screening_samples),
                             fit_region(moments_of(model_, rest), options_.fit).quadric, options_.selection);
     };
-    {
-        if (choices_[a].chosen.parameters <= plane_parameters) return;
-        std::set<int> neighbours;
+    if (choices_[a].chosen.parameters <= plane_parameters) return;
+    std::set<int> neighbours;
+    for (int f : regions_[a].faces)
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            if (labels_[g.neighbor[e]] != a && link_open(e)) neighbours.insert(labels_[g.neighbor[e]]);
+    for (int b : neighbours) {
+        if (!(proxies_[b].area > 0)) continue;
+        const double mse = regions_[b].error / proxies_[b].area;
+        auto explained = [&](int f) { return evaluator_(f, b) <= options_.tolerance * mse * model_.areas[f]; };
+        // The faces of a reached from b across open edges, flooding while b explains them,
+        // up to `rings` faces deep.
+        std::vector<int> strip, depth;
+        double strip_area = 0;
+        bool too_large = false;
         for (int f : regions_[a].faces)
             for (int e = g.begin(f); e < g.end(f); ++e)
-                if (labels_[g.neighbor[e]] != a && link_open(e)) neighbours.insert(labels_[g.neighbor[e]]);
-        for (int b : neighbours) {
-            if (!(proxies_[b].area > 0)) continue;
-            const double mse = regions_[b].error / proxies_[b].area;
-            auto explained = [&](int f) { return evaluator_(f, b) <= options_.tolerance * mse * model_.areas[f]; };
-            // The faces of a reached from b across open edges, flooding while b explains them,
-            // up to `rings` faces deep.
-            std::vector<int> strip, depth;
-            double strip_area = 0;
-            bool too_large = false;
-            for (int f : regions_[a].faces)
-                for (int e = g.begin(f); e < g.end(f); ++e)
-                    if (labels_[g.neighbor[e]] == b && link_open(e) && !in_strip_[f] && explained(f)) {
-                        in_strip_[f] = 1, strip.push_back(f), depth.push_back(1);
-                        break;
-                    }
-            for (std::size_t k = 0; k < strip.size() && !too_large; ++k) {
-                strip_area += model_.areas[strip[k]];
-                too_large = strip_area > options_.max_fraction * proxies_[a].area;
-                for (int e = g.begin(strip[k]); e < g.end(strip[k]); ++e) {
-                    const int h = g.neighbor[e];
-                    if (labels_[h] != a || in_strip_[h] || !link_open(e) || !explained(h)) continue;
-                    if (depth[k] == options_.rings) continue;
-                    in_strip_[h] = 1, strip.push_back(h), depth.push_back(depth[k] + 1);
+                if (labels_[g.neighbor[e]] == b && link_open(e) && !in_strip_[f] && explained(f)) {
+                    in_strip_[f] = 1, strip.push_back(f), depth.push_back(1);
+                    break;
                 }
+        for (std::size_t k = 0; k < strip.size() && !too_large; ++k) {
+            strip_area += model_.areas[strip[k]];
+            too_large = strip_area > options_.max_fraction * proxies_[a].area;
+            for (int e = g.begin(strip[k]); e < g.end(strip[k]); ++e) {
+                const int h = g.neighbor[e];
+                if (labels_[h] != a || in_strip_[h] || !link_open(e) || !explained(h)) continue;
+                if (depth[k] == options_.rings) continue;
+                in_strip_[h] = 1, strip.push_back(h), depth.push_back(depth[k] + 1);
             }
-            for (int f : strip) in_strip_[f] = 0;
-            if (strip.empty() || too_large) continue;
-            // Of those, the faces b explains better than a's surface without them does: a
-            // band of a's own faces near the seam, within b's error, stays.
-            const ModelChoice without = select_without(a, strip);
-            if (without.chosen.parameters >= choices_[a].chosen.parameters) continue;
-            FaceErrors rival;
-            rival.reset(model_, {without.chosen.quadric});
-            std::vector<int> kept_strip;
-            for (int f : strip)
-                if (evaluator_(f, b) < rival(f, 0)) kept_strip.push_back(f);
-            if (kept_strip.empty()) continue;
-            strip = std::move(kept_strip);
-            std::vector<int> rest = faces_without(a, strip);
-            if (rest.size() < 3) continue;
-            const Moments rest_moments = moments_of(model_, rest);
-            const ModelChoice simpler =
-                select_model(vertex_samples(model_.points, model_.triangles, rest), fit_region(rest_moments, options_.fit).quadric, options_.selection);
-            if (simpler.chosen.parameters >= choices_[a].chosen.parameters) continue;
-            std::vector<int> grown = regions_[b].faces;
-            grown.insert(grown.end(), strip.begin(), strip.end());
-            Moments grown_moments = proxies_[b].moments;
-            for (int f : strip) add_to(grown_moments, model_.moments[f]);
-            const ModelChoice kept =
-                select_model(vertex_samples(model_.points, model_.triangles, grown), fit_region(grown_moments, options_.fit).quadric, options_.selection);
-            if (kept.chosen.type != choices_[b].chosen.type) continue;
-
-            for (int f : strip) labels_[f] = b;
-            auto commit = [&](int r, std::vector<int> faces, const Moments& m, const ModelChoice& choice) {
-                Proxy& p = proxies_[r];
-                p.moments = m;
-                p.area = m[0];
-                p.faces = static_cast<int>(faces.size());
-                p.quadric = choice.chosen.quadric;
-                choices_[r] = choice;
-                regions_[r].faces = std::move(faces);
-            };
-            commit(a, std::move(rest), rest_moments, simpler);
-            commit(b, std::move(grown), grown_moments, kept);
-            evaluator_.reset(model_, quadrics_of(proxies_));
-            for (int r : {a, b}) {
-                regions_[r].error = 0;
-                for (int f : regions_[r].faces) regions_[r].error += evaluator_(f, r);
-            }
-            moved_ += static_cast<int>(strip.size());
-            // a changed: its other seams are judged anew, if it is still not a plane.
-            if (choices_[a].chosen.parameters <= plane_parameters) break;
         }
+        for (int f : strip) in_strip_[f] = 0;
+        if (strip.empty() || too_large) continue;
+        // Of those, the faces b explains better than a's surface without them does: a
+        // band of a's own faces near the seam, within b's error, stays.
+        const ModelChoice without = select_without(a, strip);
+        if (without.chosen.parameters >= choices_[a].chosen.parameters) continue;
+        FaceErrors rival;
+        rival.reset(model_, {without.chosen.quadric});
+        std::vector<int> kept_strip;
+        for (int f : strip)
+            if (evaluator_(f, b) < rival(f, 0)) kept_strip.push_back(f);
+        if (kept_strip.empty()) continue;
+        strip = std::move(kept_strip);
+        std::vector<int> rest = faces_without(a, strip);
+        if (rest.size() < 3) continue;
+        const Moments rest_moments = moments_of(model_, rest);
+        const ModelChoice simpler =
+            select_model(vertex_samples(model_.points, model_.triangles, rest), fit_region(rest_moments, options_.fit).quadric, options_.selection);
+        if (simpler.chosen.parameters >= choices_[a].chosen.parameters) continue;
+        std::vector<int> grown = regions_[b].faces;
+        grown.insert(grown.end(), strip.begin(), strip.end());
+        Moments grown_moments = proxies_[b].moments;
+        for (int f : strip) add_to(grown_moments, model_.moments[f]);
+        const ModelChoice kept =
+            select_model(vertex_samples(model_.points, model_.triangles, grown), fit_region(grown_moments, options_.fit).quadric, options_.selection);
+        if (kept.chosen.type != choices_[b].chosen.type) continue;
+
+        for (int f : strip) labels_[f] = b;
+        auto commit = [&](int r, std::vector<int> faces, const Moments& m, const ModelChoice& choice) {
+            Proxy& p = proxies_[r];
+            p.moments = m;
+            p.area = m[0];
+            p.faces = static_cast<int>(faces.size());
+            p.quadric = choice.chosen.quadric;
+            choices_[r] = choice;
+            regions_[r].faces = std::move(faces);
+        };
+        commit(a, std::move(rest), rest_moments, simpler);
+        commit(b, std::move(grown), grown_moments, kept);
+        evaluator_.reset(model_, quadrics_of(proxies_));
+        for (int r : {a, b}) {
+            regions_[r].error = 0;
+            for (int f : regions_[r].faces) regions_[r].error += evaluator_(f, r);
+        }
+        // a changed: its other seams are judged anew, if it is still not a plane.
+        if (choices_[a].chosen.parameters <= plane_parameters) break;
     }
 }
 

@@ -43,7 +43,6 @@ public:
     ~SeamSimplifier();
     bool step();  // false once every region is done
     double fraction() const;
-    int moved() const { return moved_; }  // faces given to a neighbour so far
 
 private:
     void simplify(int a);
@@ -58,7 +57,7 @@ private:
     FaceErrors evaluator_;
     std::vector<Region> regions_;
     std::vector<char> in_strip_;  // scratch, per face
-    int next_ = 0, moved_ = 0;
+    int next_ = 0;
 };
 
 }  // namespace vqsa
