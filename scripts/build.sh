@@ -13,7 +13,7 @@ cmake --build build/wasm -j "$(nproc)"
 # The site: our pages and modules, the WASM module, and the few Three.js files the
 # viewer imports (no CDN: meshes and code never leave the user's machine).
 rm -rf dist
-mkdir -p dist/vendor/three/addons/controls dist/vendor/three/addons/libs
+mkdir -p dist/vendor/three/addons/controls
 cp -r web/. dist/
 cp build/wasm/wasm/vqsa.mjs build/wasm/wasm/vqsa.wasm dist/
 cp node_modules/three/build/three.module.js node_modules/three/build/three.core.js dist/vendor/three/
@@ -21,6 +21,6 @@ cp node_modules/three/build/three.module.js node_modules/three/build/three.core.
 # viewer works from any folder of any static host without an import map.
 sed "s#from 'three'#from '../../three.module.js'#" node_modules/three/examples/jsm/controls/OrbitControls.js \
   > dist/vendor/three/addons/controls/OrbitControls.js
-cp node_modules/three/examples/jsm/libs/lil-gui.module.min.js dist/vendor/three/addons/libs/
 node scripts/example-assets.mjs dist/examples
+node scripts/write-schema.mjs dist/vqsa-schema.js
 echo "built dist/"

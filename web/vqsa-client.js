@@ -7,10 +7,16 @@
 //   client.cancel();                                     // the pending run() rejects with an AbortError
 //
 // load() resolves to {info, positions: Float32Array, triangles: Uint32Array, sourceFaces};
-// progress events carry {phase, proxies, iteration, rms, labels: Int32Array per triangle};
-// run() resolves to {report (JSON text), proxies, faceLabels, lloydFaceLabels, projected,
-// vertexErrors, glb: Uint8Array, progress}. Options: proxies, tolerance, maxIterations,
-// seed, rings, lambda, smooth, refit, project, measure (as the CLI's flags).
+// progress events carry {stage, phase, proxies, iteration, rms, fraction, labels: Int32Array
+// per triangle}; run() resolves to {report (JSON text), proxies, faceLabels, lloydFaceLabels,
+// projected, vertexErrors, glb: Uint8Array, progress}. Options: the option schema's camelCase
+// names (vqsa-schema.js, as the CLI's flags). Errors carry `fatal` when the engine itself
+// failed (it restarts).
+// `fatal`: the engine itself failed (and restarts), not the request.
+function engineError(message, fatal) {
+  return Object.assign(new Error(message), { fatal });
+}
+
 export class VqsaClient {
   #workerUrl;
   #worker = null;
@@ -44,7 +50,7 @@ export class VqsaClient {
   terminate() {
     this.#worker?.terminate();
     this.#worker = null;
-    this.#failAll(new Error('the client was terminated'));
+    this.#failAll(engineError('the client was terminated', true));
   }
 
   #start() {
@@ -52,7 +58,7 @@ export class VqsaClient {
     this.#worker.onmessage = ({ data }) => this.#receive(data);
     this.#worker.onerror = (event) => {
       event.preventDefault?.();
-      this.#restart(new Error(`the engine could not start: ${event.message ?? 'worker error'}`));
+      this.#restart(engineError(`the engine could not start: ${event.message ?? 'worker error'}`, true));
     };
   }
 
@@ -94,10 +100,12 @@ export class VqsaClient {
         request.reject(error);
         return;
       }
-      case 'error':
+      case 'error': {
         this.#requests.delete(data.id);
-        if (data.fatal) this.#restart(new Error(data.message));
-        request.reject(new Error(data.message));
+        const error = engineError(data.message, data.fatal);
+        if (data.fatal) this.#restart(error);
+        request.reject(error);
+      }
     }
   }
 }

@@ -1,28 +1,49 @@
-// <vqsa-viewer src="model.obj" proxies="20" rings="1" lambda="1"></vqsa-viewer>  (proxies="auto": automatic count)
-// A custom element around createViewer(): it approximates `src` (or `example`) when
-// attached, re-runs when `proxies` changes, and exposes the viewer as `.viewer`.
+// <vqsa-viewer src="model.obj" proxies="20" rings="2"></vqsa-viewer>
+//
+// A custom element around createViewer(). Its attributes are its API: `src` (a mesh URL)
+// or `example` (a built-in example's name), and every option of the core's schema under
+// the CLI's name (proxies="auto", tolerance="0.002", max-iterations, seed, init,
+// crease-angle, smooth="false", rings, lambda, refit, project, measure). Each is also a
+// property under its camelCase name (element.maxIterations = 50 sets the attribute).
+// The element loads its mesh when attached and runs again when an option changes (changes
+// made together run once). It fires the viewer's events: state, loaded, progress, result,
+// and error with detail {type: 'load' | 'run' | 'engine', message}; `.viewer` is the
+// viewer's module API. Its parts live in its shadow root, styles included.
 import { createViewer } from './viewer.js';
+import { options as schema } from './vqsa-schema.js';
 
-// A proxy count attribute: a number, or 'auto' for the automatic count.
-const count = (value) => (value === 'auto' ? 'auto' : Number(value));
+const EVENTS = ['state', 'loaded', 'progress', 'result', 'error'];
+
+// An attribute's text as the option's value (the core checks the ranges).
+function parse(option, text) {
+  if (option.kind === 'boolean') return !['false', '0', 'off', 'no'].includes(text.trim().toLowerCase());
+  if (option.kind === 'choice' || (option.kind === 'count' && text.trim() === 'auto')) return text.trim();
+  return text.trim() === '' ? NaN : Number(text);
+}
 
 class VqsaViewerElement extends HTMLElement {
-  static observedAttributes = ['src', 'proxies'];
+  static observedAttributes = ['src', 'example', ...schema.map((o) => o.name)];
   #viewer = null;
+  #loading = null;
+  #runQueued = false;
 
   get viewer() {
     return this.#viewer;
   }
 
+  // The options set by attributes, camelCase.
+  #options() {
+    const out = {};
+    for (const o of schema) if (this.hasAttribute(o.name)) out[o.js] = parse(o, this.getAttribute(o.name));
+    return out;
+  }
+
   connectedCallback() {
     if (this.#viewer) return;
-    const number = (name) => (this.hasAttribute(name) ? Number(this.getAttribute(name)) : undefined);
-    this.#viewer = createViewer(this, {
-      src: this.getAttribute('src') ?? undefined,
-      example: this.getAttribute('src') ? undefined : this.getAttribute('example') ?? 'turned_part',
-      proxies: this.hasAttribute('proxies') ? count(this.getAttribute('proxies')) : undefined,
-      rings: number('rings'), lambda: number('lambda'), seed: number('seed'),
-    });
+    this.#viewer = createViewer(this, this.#options());
+    for (const type of EVENTS)
+      this.#viewer.addEventListener(type, (e) => this.dispatchEvent(new CustomEvent(type, { detail: e.detail })));
+    this.#load();
   }
 
   disconnectedCallback() {
@@ -32,9 +53,51 @@ class VqsaViewerElement extends HTMLElement {
 
   attributeChangedCallback(name, previous, value) {
     if (!this.#viewer || previous === value) return;
-    if (name === 'src' && value) this.#viewer.load(value).then(() => this.#viewer.run());
-    if (name === 'proxies' && value) this.#viewer.run({ proxies: count(value) });
+    if (name === 'src' || name === 'example') this.#load();
+    else this.#queueRun();
+  }
+
+  // Loads src (or example), then runs with the attributes' options; nothing runs after a
+  // failed load.
+  #load() {
+    const src = this.getAttribute('src'), example = this.getAttribute('example') ?? 'turned_part';
+    const loading = src ? this.#viewer.load(src) : this.#viewer.loadExample(example);
+    this.#loading = loading;
+    loading.then((info) => {
+      if (this.#loading === loading) this.#loading = null;
+      if (info && this.#viewer) this.#viewer.run(this.#options());
+    });
+  }
+
+  // Several attributes set in one task run once; during a load, the run after it takes them.
+  #queueRun() {
+    if (this.#runQueued) return;
+    this.#runQueued = true;
+    queueMicrotask(() => {
+      this.#runQueued = false;
+      if (this.#viewer && !this.#loading && this.#viewer.state !== 'loading') this.#viewer.run(this.#options());
+    });
   }
 }
+
+// Reflected properties: element.proxies, element.maxIterations, … read and write the attributes.
+for (const o of schema)
+  Object.defineProperty(VqsaViewerElement.prototype, o.js, {
+    get() {
+      return this.hasAttribute(o.name) ? parse(o, this.getAttribute(o.name)) : o.default;
+    },
+    set(value) {
+      this.setAttribute(o.name, String(value));
+    },
+  });
+for (const name of ['src', 'example'])
+  Object.defineProperty(VqsaViewerElement.prototype, name, {
+    get() {
+      return this.getAttribute(name);
+    },
+    set(value) {
+      this.setAttribute(name, value);
+    },
+  });
 
 if (!customElements.get('vqsa-viewer')) customElements.define('vqsa-viewer', VqsaViewerElement);

@@ -1,6 +1,6 @@
 // The module worker that owns the WASM instance. Protocol (every request carries an id):
 //   in:  {type:'load', id, bytes, name} | {type:'example', id, name} | {type:'run', id, options} | {type:'cancel'}
-//   out: {type:'loaded', id, info, positions, triangles, sourceFaces, legend, examples}
+//   out: {type:'loaded', id, info, positions, triangles, sourceFaces}
 //        {type:'progress', id, stage, phase, proxies, iteration, rms, fraction, labels}
 //          (each new stage and operation, else ≤ 25 per second)
 //        {type:'result', id, ...}  {type:'cancelled', id}  {type:'error', id, message, fatal}
@@ -23,11 +23,9 @@ function post(message, transfer = []) {
   self.postMessage(message, transfer);
 }
 
-function loaded(id, info, vqsa) {
+function loaded(id, info) {
   const positions = session.positions(), triangles = session.triangles(), sourceFaces = session.sourceFaces();
-  const legend = JSON.parse(vqsa.legend()), examples = vqsa.exampleNames().split(',');
-  post({ type: 'loaded', id, info, positions, triangles, sourceFaces, legend, examples },
-    [positions.buffer, triangles.buffer, sourceFaces.buffer]);
+  post({ type: 'loaded', id, info, positions, triangles, sourceFaces }, [positions.buffer, triangles.buffer, sourceFaces.buffer]);
 }
 
 function progress(id) {
@@ -87,8 +85,8 @@ async function handle(data) {
   try {
     const vqsa = await ready;
     session ??= new vqsa.Session();
-    if (data.type === 'load') loaded(data.id, session.load(new Uint8Array(data.bytes), data.name), vqsa);
-    else if (data.type === 'example') loaded(data.id, session.loadExample(data.name), vqsa);
+    if (data.type === 'load') loaded(data.id, session.load(new Uint8Array(data.bytes), data.name));
+    else if (data.type === 'example') loaded(data.id, session.loadExample(data.name));
     else if (data.type === 'run') await run(data.id, data.options ?? {});
     else throw new Error(`unknown request '${data.type}'`);
   } catch (e) {

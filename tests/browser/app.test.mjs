@@ -3,6 +3,7 @@
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
 import { after, before, test } from 'node:test';
 import { root, validateGlb } from '../node/support.mjs';
 import { guardNetwork, launchBrowser, startSite } from './support.mjs';
@@ -37,7 +38,7 @@ async function drop(p, name, { url = null, text = null } = {}) {
 }
 
 async function setProxies(p, n) {
-  const input = p.locator('.lil-gui .controller.number input').first();
+  const input = p.locator('[data-option="proxies"] input[type="number"]');
   await input.fill(String(n));
   await input.press('Enter');
 }
@@ -57,7 +58,7 @@ test('the app opens with an example approximated, no console errors, a drawn can
   await waitFor(page, ['done']);
   assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '7');
   const colours = await page.evaluate(() => {
-    const canvas = document.querySelector('.vqsa-canvas canvas');
+    const canvas = document.querySelector('.vqsa-viewer').shadowRoot.querySelector('.vqsa-canvas canvas');
     const g = document.createElement('canvas');
     g.width = 64, g.height = 64;
     const c = g.getContext('2d');
@@ -76,7 +77,7 @@ test('an idle page draws nothing; a camera move draws', async () => {
     let n = 0;
     const raf = window.requestAnimationFrame;
     window.requestAnimationFrame = (callback) => (++n, raf(callback));
-    if (action) document.querySelector('.vqsa-canvas canvas').dispatchEvent(new WheelEvent('wheel', { deltaY: 200, bubbles: true }));
+    if (action) document.querySelector('.vqsa-viewer').shadowRoot.querySelector('.vqsa-canvas canvas').dispatchEvent(new WheelEvent('wheel', { deltaY: 200, bubbles: true }));
     await new Promise((resolve) => setTimeout(resolve, 1000));
     window.requestAnimationFrame = raf;
     return n;
@@ -124,11 +125,11 @@ test('dropping fandisk.off runs to the requested count live; the GLB downloads a
 });
 
 test('views: heat map and types render after a run', async () => {
-  await page.selectOption('.lil-gui select >> nth=0', 'Error heat map');
+  await page.selectOption('[data-option="view"] select', 'Error heat map');
   assert.match(await page.textContent('.vqsa-legend'), /distance to the input/);
   await page.screenshot({ path: join(shots, 'app-heatmap.png') });
-  await page.selectOption('.lil-gui select >> nth=0', 'Partition');
-  await page.selectOption('.lil-gui select >> nth=1', 'By quadric type');
+  await page.selectOption('[data-option="view"] select', 'Partition');
+  await page.selectOption('[data-option="colouring"] select', 'By quadric type');
   assert.match(await page.textContent('.vqsa-legend'), /plane/);
   await page.hover('.vqsa-table tr[data-region="1"]');
   const detail = await page.textContent('.vqsa-detail');
@@ -144,7 +145,7 @@ test('garbage and empty files show an error, and a valid file still works', asyn
   assert.match(await page.textContent('[data-testid="error"]'), /garbage\.stl: /);
   await page.screenshot({ path: join(shots, 'app-error.png') });
   await drop(page, 'empty.off', { text: '' });
-  await page.waitForFunction(() => /empty\.off: the file is empty/.test(document.querySelector('[data-testid="error"]').textContent));
+  await page.waitForFunction(() => /empty\.off: the file is empty/.test(document.querySelector('.vqsa-viewer').shadowRoot.querySelector('[data-testid="error"]').textContent));
   await setProxies(page, 5);
   await drop(page, 'csg.off', { url: '/meshes/csg.off' });
   await waitFor(page, ['done']);
@@ -200,7 +201,57 @@ test('the embed page renders and runs', async () => {
     element.setAttribute('proxies', 'auto');
   }));
   assert.ok(['fitted', 'no_gain'].includes(stop), `stopped: ${stop}`);
-  assert.equal(await embed.isChecked('vqsa-viewer .lil-gui .controller.boolean input >> nth=0'), true);
+  assert.equal(await embed.isChecked('vqsa-viewer [data-option="proxies"] input[type="checkbox"]'), true);
+  assert.deepEqual(consoleErrors, []);
+  await embed.close();
+});
+
+test('<vqsa-viewer>: options as attributes and properties, one run per change, error events, scoped styles', async () => {
+  const embed = await openPage('embed.html');
+  await waitFor(embed, ['done']);
+  const outcome = await embed.evaluate(async () => {
+    const element = document.querySelector('vqsa-viewer');
+    const events = [];
+    for (const type of ['state', 'result', 'error']) element.addEventListener(type, (e) => events.push([type, e.detail]));
+    const next = (type) => new Promise((resolve) => element.addEventListener(type, (e) => resolve(e.detail), { once: true }));
+    const out = {};
+    // Properties reflect to attributes; two changes in one task make one run.
+    let result = next('result');
+    element.proxies = 6;
+    element.maxIterations = 500;
+    out.attributes = [element.getAttribute('proxies'), element.getAttribute('max-iterations'), element.rings];
+    out.report = await result;
+    out.runs = events.filter(([type, detail]) => type === 'state' && detail === 'running').length;
+    // An option out of range: an error event of type 'run'.
+    let error = next('error');
+    element.setAttribute('rings', '0');
+    out.runError = await error;
+    element.setAttribute('rings', '1');
+    await next('result');
+    // A src that cannot be fetched: type 'load', and nothing runs after it.
+    events.length = 0;
+    error = next('error');
+    element.src = 'examples/missing.off';
+    out.loadError = await error;
+    await new Promise((resolve) => setTimeout(resolve, 500));
+    out.statesAfterFailedLoad = events.filter(([type]) => type === 'state').map(([, state]) => state);
+    // The viewer's styles live in its shadow root, not in the page.
+    out.pageSheets = [...document.styleSheets].map((s) => s.href).filter(Boolean);
+    out.shadowSheets = [...element.shadowRoot.styleSheets].map((s) => s.href.split('/').pop());
+    return out;
+  });
+  assert.deepEqual(outcome.attributes, ['6', '500', 1]);
+  assert.equal(outcome.report.proxies.length, 6);
+  assert.equal(outcome.report.options['max-iterations'], 500);
+  assert.equal(outcome.runs, 1);
+  assert.equal(outcome.runError.type, 'run');
+  assert.match(outcome.runError.message, /rings/);
+  assert.equal(outcome.loadError.type, 'load');
+  assert.match(outcome.loadError.message, /missing\.off/);
+  assert.deepEqual(outcome.statesAfterFailedLoad, ['loading', 'error']);
+  assert.deepEqual(outcome.pageSheets, []);
+  assert.deepEqual(outcome.shadowSheets, ['viewer.css']);
+  consoleErrors.splice(0, consoleErrors.length, ...consoleErrors.filter((e) => !/missing\.off|404/.test(e)));
   assert.deepEqual(consoleErrors, []);
   await embed.close();
 });
@@ -214,28 +265,32 @@ test('a dropped CAD mesh runs with the automatic count until a count is chosen',
   await waitFor(fresh, ['done']);
   // A capped cylinder is three surfaces: its side and two disks.
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '3');
-  assert.equal(await fresh.isChecked('.lil-gui .controller.boolean input >> nth=0'), true);
+  assert.equal(await fresh.isChecked('[data-option="proxies"] input[type="checkbox"]'), true);
   await fresh.screenshot({ path: join(shots, 'app-automatic.png') });
   await setProxies(fresh, 2);
   await drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' });
   await waitFor(fresh, ['running']);
   await waitFor(fresh, ['done']);
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '2');
-  assert.equal(await fresh.isChecked('.lil-gui .controller.boolean input >> nth=0'), false);
+  assert.equal(await fresh.isChecked('[data-option="proxies"] input[type="checkbox"]'), false);
   assert.deepEqual(consoleErrors, []);
   await fresh.close();
 });
 
-test('the tolerance field is active only while the run stops on tolerance', async () => {
+test('the panel is the option schema: the tolerance field is active only while its switch is on', async () => {
   const fresh = await openPage('index.html');
   await waitFor(fresh, ['done']);
-  const tolerance = fresh.locator('.lil-gui .controller', { hasText: 'tolerance (RMS)' });
-  const stopOnTolerance = fresh.locator('.lil-gui .controller', { hasText: 'stop on tolerance' }).locator('input');
-  assert.equal(await tolerance.evaluate((e) => e.classList.contains('disabled')), true);
-  await stopOnTolerance.check();
-  assert.equal(await tolerance.evaluate((e) => e.classList.contains('disabled')), false);
-  await stopOnTolerance.uncheck();
-  assert.equal(await tolerance.evaluate((e) => e.classList.contains('disabled')), true);
+  // Every option of the core's schema has its control, under its camelCase name.
+  const { options } = await import(pathToFileURL(join(root, 'dist', 'vqsa-schema.js')).href);
+  for (const o of options) assert.equal(await fresh.locator(`[data-option="${o.js}"]`).count(), 1, o.js);
+  const tolerance = fresh.locator('[data-option="tolerance"] input[type="number"]');
+  const on = fresh.locator('[data-option="tolerance"] input[type="checkbox"]');
+  assert.equal(await tolerance.isDisabled(), true);
+  await on.check();
+  assert.equal(await tolerance.isDisabled(), false);
+  assert.equal(await tolerance.inputValue(), '0.002');  // the schema's typical value
+  await on.uncheck();
+  assert.equal(await tolerance.isDisabled(), true);
   await fresh.close();
 });
 

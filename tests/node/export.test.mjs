@@ -5,7 +5,8 @@ import { mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { test } from 'node:test';
-import { meshes, nativeBuild, readGlb, runNativeCli, triangleRegions, validateGlb } from './support.mjs';
+import { pathToFileURL } from 'node:url';
+import { meshes, nativeBuild, readGlb, root, runNativeCli, triangleRegions, validateGlb } from './support.mjs';
 
 const work = mkdtempSync(join(tmpdir(), 'vqsa-export-'));
 test.after(() => rmSync(work, { recursive: true, force: true }));
@@ -20,7 +21,7 @@ test('every GLB written by the C++ tests passes the Khronos validator', async ()
 });
 
 for (const [file, proxies] of [['fandisk.off', 22], ['csg.off', 10]]) {
-  test(`${file}: CLI GLB validates and reads back in Three.js like the report`, async () => {
+  test(`${file}: CLI GLB validates and reads back in Three.js like the report, in the app's colours`, async () => {
     const glb = join(work, `${file}.glb`), json = join(work, `${file}.json`);
     runNativeCli([join(meshes, file), '--proxies', String(proxies), '--quiet', '-o', glb, '--report', json]);
     await validate(glb);
@@ -32,8 +33,10 @@ for (const [file, proxies] of [['fandisk.off', 22], ['csg.off', 10]]) {
     assert.equal(run.stop_reason, report.stop_reason);
     assert.deepEqual(run.metrics, report.metrics);
 
+    // The default scene shows one surface; the projected mesh is the second scene.
     const input = gltf.scene.getObjectByName('input');
-    const projected = gltf.scene.getObjectByName('projected');
+    assert.equal(gltf.scene.getObjectByName('projected'), undefined);
+    const projected = gltf.scenes[1]?.getObjectByName('projected');
     assert.ok(input && projected);
     const regions = input.userData.regions;
     assert.equal(regions.length, report.proxies.length);
@@ -48,5 +51,16 @@ for (const [file, proxies] of [['fandisk.off', 22], ['csg.off', 10]]) {
     const kept = report.labels.filter((_, f) => !dropped.has(f));
     assert.deepEqual(triangleRegions(input), kept);
     assert.deepEqual(triangleRegions(projected), kept);
+
+    // One palette: each vertex has its region's colour in the app (dist/vqsa-schema.js),
+    // and the legend names every type.
+    const { palette } = await import(pathToFileURL(join(root, 'dist', 'vqsa-schema.js')).href);
+    const colours = input.geometry.getAttribute('color'), ids = input.geometry.getAttribute('_feature_id_0');
+    for (let v = 0; v < colours.count; v += 7) {
+      const expected = palette.regions[ids.getX(v) % palette.regions.length];
+      [colours.getX(v), colours.getY(v), colours.getZ(v)].forEach((c, k) => assert.ok(Math.abs(c - expected[k]) < 1e-6));
+    }
+    assert.deepEqual(run.legend, palette.types);
+    assert.ok('empty' in run.legend && 'parallel_planes' in run.legend);
   });
 }

@@ -237,14 +237,7 @@ EMSCRIPTEN_BINDINGS(vqsa) {
                              for (const std::string& n : example_names()) names += std::string(names.empty() ? "" : ",") + n;
                              return names;
                          }));
-    emscripten::function("legend", emscripten::optional_override([] {
-                             nlohmann::json legend = nlohmann::json::object();
-                             for (int t = 0; t <= static_cast<int>(QuadricType::parallel_planes); ++t) {
-                                 const Vec3 c = type_color(static_cast<QuadricType>(t));
-                                 legend[type_name(static_cast<QuadricType>(t))] = {c.x(), c.y(), c.z()};
-                             }
-                             return legend.dump();
-                         }));
+    emscripten::function("palette", emscripten::optional_override([] { return palette_json().dump(); }));
     emscripten::function("optionSchema", emscripten::optional_override([] { return schema_to_json().dump(); }));
     emscripten::function("version", emscripten::optional_override([] { return std::string(VQSA_VERSION); }));
 }

@@ -220,7 +220,7 @@ std::string export_glb(const Mesh& mesh, const Result& result) {
     for (int i = 0; i < regions; ++i) {
         nlohmann::json r = proxy_report(result, i);
         shapes.push_back(result.proxies[i].shape);
-        colors.push_back(region_color(result.proxies[i].type, i));
+        colors.push_back(region_color(i));
         r["feature_id"] = i;
         r["color"] = {colors.back().x(), colors.back().y(), colors.back().z()};
         region_data.push_back(r);
@@ -295,23 +295,26 @@ std::string export_glb(const Mesh& mesh, const Result& result) {
     gltf.buffers[0].data.resize((gltf.buffers[0].data.size() + 3) / 4 * 4, 0);
 
     nlohmann::json run = run_report(result);
-    nlohmann::json legend = nlohmann::json::object();
-    for (int t = 0; t <= static_cast<int>(QuadricType::parallel_planes); ++t) {
-        const Vec3 c = type_color(static_cast<QuadricType>(t));
-        legend[type_name(static_cast<QuadricType>(t))] = {c.x(), c.y(), c.z()};
-    }
-    run["legend"] = legend;
+    run["legend"] = palette_json()["types"];
     std::vector<int> dropped;
     for (std::size_t k = 0, f = 0; f < static_cast<std::size_t>(mesh.input_face_count); ++f) {
         if (k < mesh.source_face.size() && mesh.source_face[k] == static_cast<int>(f)) ++k;
         else dropped.push_back(static_cast<int>(f));
     }
     run["dropped_faces"] = dropped;
+    // The projected mesh lies where the input does: in a scene of its own, so that a
+    // viewer showing the default scene shows one surface, not two fighting for depth.
     tinygltf::Scene scene;
     scene.name = "vqsa";
-    for (std::size_t n = 0; n < gltf.nodes.size(); ++n) scene.nodes.push_back(static_cast<int>(n));
+    scene.nodes = {0};
     scene.extras = to_value(run);
     gltf.scenes.push_back(scene);
+    if (gltf.nodes.size() > 1) {
+        tinygltf::Scene projected;
+        projected.name = "projection";
+        projected.nodes = {1};
+        gltf.scenes.push_back(projected);
+    }
     gltf.defaultScene = 0;
 
     std::ostringstream out;

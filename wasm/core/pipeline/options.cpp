@@ -22,7 +22,7 @@ std::vector<OptionSpec> make_schema() {
     s.push_back({"tolerance", OptionKind::number, 0, 1, {},
                  "stop once the RMS distance, relative to the longest bounding-box side, is below this (0: off)",
                  [](Options& o, const json& v) { o.lloyd.tolerance = v.get<double>(); },
-                 [](const Options& o) { return json(o.lloyd.tolerance); }});
+                 [](const Options& o) { return json(o.lloyd.tolerance); }, 0.002});
     s.push_back({"max-iterations", OptionKind::integer, 1, 1e8, {}, "cap on Lloyd iterations in all",
                  [](Options& o, const json& v) { o.lloyd.max_iterations = v.get<int>(); },
                  [](const Options& o) { return json(o.lloyd.max_iterations); }});
@@ -191,6 +191,7 @@ json schema_to_json() {
             entry["max"] = spec.max;
         }
         if (spec.kind == OptionKind::choice) entry["choices"] = spec.choices;
+        if (spec.typical_when_on != 0) entry["typicalWhenOn"] = spec.typical_when_on;
         out.push_back(entry);
     }
     return out;

@@ -46,6 +46,9 @@ struct OptionSpec {
     std::string help;
     void (*set)(Options&, const nlohmann::json& value);  // value already checked and normalised
     nlohmann::json (*get)(const Options&);
+    // A number whose 0 turns the option off: a typical value to turn it on with (front
+    // ends show such an option as a switch and a field). 0 for every other option.
+    double typical_when_on = 0;
 };
 
 const std::vector<OptionSpec>& option_schema();

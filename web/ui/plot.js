@@ -1,0 +1,30 @@
+// The RMS error against the proxy count, on a log scale: the paper's progressive
+// insertion as a curve. `history`: [count, rms] pairs in the order seen.
+export function drawPlot(canvas, history) {
+  const g = canvas.getContext('2d'), w = canvas.width, h = canvas.height, pad = 26;
+  g.clearRect(0, 0, w, h);
+  g.fillStyle = '#fff';
+  g.fillRect(0, 0, w, h);
+  g.strokeStyle = '#ccd';
+  g.strokeRect(pad, 6, w - pad - 6, h - pad);
+  // The last error seen at each count (a teleport or a split passes through a count more
+  // than once), by count.
+  const last = new Map();
+  for (const [n, rms] of history) if (rms > 0) last.set(n, rms);
+  const points = [...last].sort((a, b) => a[0] - b[0]);
+  if (points.length < 2) return;
+  const maxN = Math.max(...points.map(([n]) => n)), logs = points.map(([, r]) => Math.log10(r));
+  const lo = Math.floor(Math.min(...logs)), hi = Math.ceil(Math.max(...logs)) + (Math.min(...logs) === Math.max(...logs) ? 1 : 0);
+  const x = (n) => pad + ((n - 1) / Math.max(1, maxN - 1)) * (w - pad - 8);
+  const y = (r) => 6 + ((hi - Math.log10(r)) / (hi - lo)) * (h - pad - 2);
+  g.fillStyle = '#556';
+  g.font = '10px sans-serif';
+  for (let e = lo; e <= hi; ++e) g.fillText(`1e${e}`, 0, y(10 ** e) + 3);
+  g.fillText('proxies', w / 2 - 15, h - 4);
+  g.fillText(String(maxN), w - 22, h - 14);
+  g.strokeStyle = '#2864c8';
+  g.lineWidth = 1.5;
+  g.beginPath();
+  points.forEach(([n, r], i) => (i ? g.lineTo(x(n), y(r)) : g.moveTo(x(n), y(r))));
+  g.stroke();
+}
