@@ -41,13 +41,9 @@ std::vector<signed char> orientation(const Model& model) {
     return sign;
 }
 
-}  // namespace
-
-Features detect_features(const Model& model, const FeatureOptions& options) {
-    const DualGraph& g = model.graph;
+// Unit face normals, consistently oriented where the mesh allows.
+std::vector<Vec3> face_normals(const Model& model) {
     const int n = model.face_count();
-    Features out;
-
     const std::vector<signed char> sign = orientation(model);
     std::vector<Vec3> normal(n);
     for (int f = 0; f < n; ++f) {
@@ -56,10 +52,15 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         const double length = c.norm();
         normal[f] = length > 0 ? Vec3(sign[f] * c / length) : Vec3::Zero();
     }
+    return normal;
+}
 
-    // Noise turns the normals of faces not much larger than it at random: such faces
-    // make no creases. Its level: the median distance of a vertex from the mean of its
-    // neighbours, along the normal.
+// The noise level: the median distance of a vertex from the mean of its neighbours, along
+// the normal, over vertices whose faces turn by less than the crease angle (on a coarse
+// CAD tessellation most vertices sit on edges, and their deviation is no noise). 0 when
+// too few vertices are smooth to tell.
+double noise_level(const Model& model, const std::vector<Vec3>& normal, double crease_angle) {
+    const int n = model.face_count();
     std::vector<Vec3> vertex_normal(model.points.size(), Vec3::Zero()), neighbours(model.points.size(), Vec3::Zero());
     std::vector<int> neighbour_count(model.points.size(), 0);
     for (int f = 0; f < n; ++f) {
@@ -70,9 +71,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
             neighbour_count[t[i]] += 2;
         }
     }
-    // Only over vertices whose faces turn by less than the crease angle: on a coarse CAD
-    // tessellation most vertices sit on edges, and their deviation is no noise.
-    const double smooth_cos = std::cos(options.crease_angle * M_PI / 180);
+    const double smooth_cos = std::cos(crease_angle * M_PI / 180);
     std::vector<Vec3> lowest(model.points.size(), Vec3::Zero());  // a face normal per vertex, to compare with
     std::vector<char> smooth(model.points.size(), 1);
     for (int f = 0; f < n; ++f)
@@ -84,30 +83,28 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     for (std::size_t v = 0; v < model.points.size(); ++v)
         if (smooth[v] && neighbour_count[v] > 0 && vertex_normal[v].norm() > 0)
             deviations.push_back(std::abs((model.points[v] - neighbours[v] / neighbour_count[v]).dot(vertex_normal[v].normalized())));
-    double noise = 0;
-    if (deviations.size() * 10 >= model.points.size()) {  // else: too few smooth vertices to tell noise
-        std::nth_element(deviations.begin(), deviations.begin() + deviations.size() / 2, deviations.end());
-        noise = deviations[deviations.size() / 2];
-    }
-    std::vector<char> reliable(n);
-    std::vector<double> range(n);  // the filter's normal difference of half weight, per face
-    for (int f = 0; f < n; ++f) {
-        const Triangle& t = model.triangles[f];
-        double longest = 0;
-        for (int i = 0; i < 3; ++i) longest = std::max(longest, (model.points[t[i]] - model.points[t[(i + 1) % 3]]).norm());
-        const double altitude = 2 * model.areas[f] / longest;  // the smallest
-        reliable[f] = altitude > 3 * noise;
-        // Noise σ tilts a face of altitude h by about 2σ/h: differences that large are noise.
-        range[f] = std::clamp(2 * noise / std::max(altitude, 1e-300), options.filter_range, 0.6);
-    }
+    if (deviations.size() * 10 < model.points.size()) return 0;
+    std::nth_element(deviations.begin(), deviations.begin() + deviations.size() / 2, deviations.end());
+    return deviations[deviations.size() / 2];
+}
 
-    const std::vector<Vec3> raw = normal;
-    // Bilateral filtering over edge neighbours: a neighbour counts by how close its normal
-    // is (half weight at the faces' range), so noise averages out while sharp edges, whose
-    // two sides barely see each other, stay. Not by area: a large face beside a thin
-    // strip (the side of a plate) would drag the strip's normal over the crease.
+// A face's smallest altitude: across its narrowest width.
+double narrowest_width(const Model& model, int f) {
+    const Triangle& t = model.triangles[f];
+    double longest = 0;
+    for (int i = 0; i < 3; ++i) longest = std::max(longest, (model.points[t[i]] - model.points[t[(i + 1) % 3]]).norm());
+    return longest > 0 ? 2 * model.areas[f] / longest : 0;
+}
+
+// Bilateral filtering over edge neighbours: a neighbour counts by how close its normal
+// is (half weight at the faces' range), so noise averages out while sharp edges, whose
+// two sides barely see each other, stay. Not by area: a large face beside a thin strip
+// (the side of a plate) would drag the strip's normal over the crease.
+std::vector<Vec3> filter_normals(const DualGraph& g, std::vector<Vec3> normal, const std::vector<double>& range,
+                                 int iterations) {
+    const int n = static_cast<int>(normal.size());
     std::vector<Vec3> next(n);
-    for (int it = 0; it < options.filter_iterations; ++it) {
+    for (int it = 0; it < iterations; ++it) {
         for (int f = 0; f < n; ++f) {
             Vec3 sum = normal[f];
             for (int e = g.begin(f); e < g.end(f); ++e) {
@@ -120,17 +117,20 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         }
         normal.swap(next);
     }
+    return normal;
+}
 
-    const double cos_limit = std::cos(options.crease_angle * M_PI / 180);
-    out.crease.assign(g.neighbor.size(), 0);
+// Creases: dual links whose (filtered) normals differ by more than the crease angle.
+// Noise leaves spurious creases inside faces: a crease is confirmed only if the mean
+// normals of the faces around each side (two rings, not crossing creases) still differ
+// by the crease angle.
+std::vector<char> find_creases(const DualGraph& g, const std::vector<Vec3>& normal, double crease_angle) {
+    const int n = static_cast<int>(normal.size());
+    const double cos_limit = std::cos(crease_angle * M_PI / 180);
+    std::vector<char> crease(g.neighbor.size(), 0);
     for (int f = 0; f < n; ++f)
-        for (int e = g.begin(f); e < g.end(f); ++e) {
-            const int h = g.neighbor[e];
-            out.crease[e] = options.crease_angle < 180 && normal[f].dot(normal[h]) < cos_limit;
-        }
-    // Noise leaves spurious creases inside faces. A crease is confirmed only if the mean
-    // normals of the faces around each side (two rings, not crossing creases) still differ
-    // by the crease angle.
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            crease[e] = crease_angle < 180 && normal[f].dot(normal[g.neighbor[e]]) < cos_limit;
     auto side_normal = [&](int f) {
         Vec3 sum = normal[f];
         std::vector<int> ring{f};
@@ -139,7 +139,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
             for (int i = begin; i < end; ++i)
                 for (int e = g.begin(ring[i]); e < g.end(ring[i]); ++e) {
                     const int m = g.neighbor[e];
-                    if (out.crease[e] || std::find(ring.begin(), ring.end(), m) != ring.end()) continue;
+                    if (crease[e] || std::find(ring.begin(), ring.end(), m) != ring.end()) continue;
                     ring.push_back(m);
                     sum += normal[m];
                 }
@@ -147,22 +147,25 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         }
         return Vec3(sum.normalized());
     };
-    std::vector<char> confirmed(out.crease.size(), 0);
+    std::vector<char> confirmed(crease.size(), 0);
     for (int f = 0; f < n; ++f)
         for (int e = g.begin(f); e < g.end(f); ++e)
-            if (out.crease[e] && f < g.neighbor[e]) confirmed[e] = side_normal(f).dot(side_normal(g.neighbor[e])) < cos_limit;
+            if (crease[e] && f < g.neighbor[e]) confirmed[e] = side_normal(f).dot(side_normal(g.neighbor[e])) < cos_limit;
     for (int f = 0; f < n; ++f)
         for (int e = g.begin(f); e < g.end(f); ++e) {
             const int h = g.neighbor[e];
-            if (!out.crease[e] || f < h) continue;
+            if (!crease[e] || f < h) continue;
             for (int k = g.begin(h); k < g.end(h); ++k)
                 if (g.neighbor[k] == f) confirmed[e] = confirmed[k];
         }
-    out.crease.swap(confirmed);
+    return confirmed;
+}
 
-    // Charts: reliable faces joined by edges that are not creases. Unreliable faces join
-    // no two faces (a chain of them along a crease would bridge it); afterwards each
-    // takes the chart of the nearest reliable face, breadth first.
+// Charts: reliable faces joined by edges that are not creases. Unreliable faces join no
+// two faces (a chain of them along a crease would bridge it); afterwards each takes the
+// chart of the nearest reliable face, breadth first.
+void find_charts(const DualGraph& g, const std::vector<char>& reliable, Features& out) {
+    const int n = static_cast<int>(reliable.size());
     out.chart.assign(n, -1);
     std::vector<int> stack;
     auto grow = [&](int f, bool through_unreliable) {
@@ -192,13 +195,16 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         }
     for (int f = 0; f < n; ++f)
         if (out.chart[f] < 0) grow(f, true);  // a component without a reliable face
+}
 
-    // Roughness: how far each vertex lies, along its normal, from the mean of its
-    // neighbours (the umbrella) beyond what its neighbours do — a second difference, so
-    // that the smooth curvature of a clean surface cancels and noise remains. Scaled so
-    // that under noise it is the RMS distance a locally exact surface leaves (samples at
-    // vertices and barycentres). A vertex on a crease is measured once per chart, from
-    // that chart's faces only: the crease itself is no roughness.
+// Per chart: the roughness of its vertices — how far each lies, along its normal, from
+// the mean of its neighbours (the umbrella) beyond what its neighbours do: a second
+// difference, so that the smooth curvature of a clean surface cancels and noise remains.
+// Scaled so that under noise it is the RMS distance a locally exact surface leaves
+// (samples at vertices and barycentres). A vertex on a crease is measured once per
+// chart, from that chart's faces only: the crease itself is no roughness.
+std::vector<double> chart_roughness(const Model& model, const std::vector<Vec3>& normal, const Features& out) {
+    const int n = model.face_count();
     const std::size_t vn = model.points.size();
     std::vector<int> vertex_chart(vn, -1);  // the chart of a vertex's faces, or -2 for several
     for (int f = 0; f < n; ++f)
@@ -269,9 +275,36 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     std::vector<double> all;
     for (const std::vector<double>& m : magnitudes) all.insert(all.end(), m.begin(), m.end());
     const double overall = kCalibration * median(std::move(all));
-    std::vector<double> chart_roughness(out.chart_count, overall);
+    std::vector<double> roughness(out.chart_count, overall);
     for (int c = 0; c < out.chart_count; ++c)
-        if (magnitudes[c].size() >= 30) chart_roughness[c] = kCalibration * median(std::move(magnitudes[c]));
+        if (magnitudes[c].size() >= 30) roughness[c] = kCalibration * median(std::move(magnitudes[c]));
+    return roughness;
+}
+
+}  // namespace
+
+Features detect_features(const Model& model, const FeatureOptions& options) {
+    const DualGraph& g = model.graph;
+    const int n = model.face_count();
+    Features out;
+    const std::vector<Vec3> raw = face_normals(model);
+
+    // Noise turns the normals of faces not much larger than it at random: such faces
+    // make no creases, and their normals are filtered harder.
+    const double noise = noise_level(model, raw, options.crease_angle);
+    std::vector<char> reliable(n);
+    std::vector<double> range(n);  // the filter's normal difference of half weight, per face
+    for (int f = 0; f < n; ++f) {
+        const double altitude = narrowest_width(model, f);
+        reliable[f] = altitude > 3 * noise;
+        // Noise σ tilts a face of altitude h by about 2σ/h: differences that large are noise.
+        range[f] = std::clamp(2 * noise / std::max(altitude, 1e-300), options.filter_range, 0.6);
+    }
+    out.normals = filter_normals(g, raw, range, options.filter_iterations);
+    out.crease = find_creases(g, out.normals, options.crease_angle);
+    find_charts(g, reliable, out);
+    const std::vector<double> per_chart = chart_roughness(model, out.normals, out);
+
     // A clean tessellation has roughness too: its flat facets stand off the smooth
     // surface by the sagitta of the arc across them, about altitude × dihedral / 8 over
     // the edges bent by less than half the crease angle (the largest of a face's; more is
@@ -283,12 +316,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
         // Across the face's narrowest width: a sliver's length is no chord.
-        double longest = 0;
-        for (int i = 0; i < 3; ++i) {
-            const Triangle& t = model.triangles[f];
-            longest = std::max(longest, (model.points[t[i]] - model.points[t[(i + 1) % 3]]).norm());
-        }
-        const double width = longest > 0 ? 2 * model.areas[f] / longest : 0;
+        const double width = narrowest_width(model, f);
         double sagitta = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             if (out.crease[e] || !(g.edge_length[e] > 0)) continue;
@@ -296,9 +324,8 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
             if (angle > smooth_limit) continue;  // a bend (a chamfer's edge), not a chord
             sagitta = std::max(sagitta, width * angle / 8);
         }
-        out.roughness[f] = std::hypot(chart_roughness[out.chart[f]], kSagittaRms * sagitta);
+        out.roughness[f] = std::hypot(per_chart[out.chart[f]], kSagittaRms * sagitta);
     }
-    out.normals = std::move(normal);
     return out;
 }
 

@@ -286,21 +286,7 @@ void Lloyd::start_operation(Operation operation) {
 }
 
 void Lloyd::decide() {
-    // A teleport (one proxy more where the error is, then the cheapest merge) is judged
-    // once the count is back at the target.
-    if (teleport_pending_ && static_cast<int>(proxies_.size()) == options_.proxies) {
-        teleport_pending_ = false;
-        if (!(energy_ < snapshot_.energy * (1 - options_.convergence))) {
-            // The teleport did not pay: go back, and stop trying (the same move would be chosen again).
-            labels_ = snapshot_.labels;
-            errors_ = snapshot_.errors;
-            proxies_ = snapshot_.proxies;
-            energy_ = snapshot_.energy;
-            evaluate();
-            teleports_left_ = 0;
-        }
-    }
-
+    if (teleport_pending_ && static_cast<int>(proxies_.size()) == options_.proxies) judge_teleport();
     const int count = static_cast<int>(proxies_.size());
     const int target = options_.proxies;
     // Valid at every stop: a region on two parts of its quadric is split first, whatever the
@@ -324,45 +310,8 @@ void Lloyd::decide() {
         --repairs_left_;
         return start_operation(Operation::teleport);
     }
-    if (target > 0 && count == target) {
-        // A chart left to a neighbour's proxy while two proxies share one surface: the
-        // second goes to the chart.
-        if (repairs_left_ > 0 && options_.init == Initialization::features && !misfit_charts().empty() &&
-            merge_same_surface()) {
-            --repairs_left_;
-            insert_into_charts(1);
-            return start_operation(Operation::teleport);
-        }
-        if (teleports_left_ > 0) {
-            snapshot_ = {labels_, errors_, proxies_, energy_};
-            if (insert_farthest(1) == 1) {
-                --teleports_left_;
-                teleport_pending_ = true;
-                return start_operation(Operation::teleport);
-            }
-        }
-        return stop(StopReason::proxies);
-    }
-    if (automatic()) {
-        // The last insertion is judged by what it bought: too little, and growing stops.
-        // Three insertions in a row that do not pay end the growth (one alone may need
-        // more Lloyd iterations than its stage gave it).
-        if (energy_before_insert_ >= 0 && !finishing_ && misfit_charts().empty()) {
-            if (energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_)) unpaid_ = 0;
-            else if (++unpaid_ >= 3) finishing_ = true, finish_reason_ = StopReason::no_gain;
-        }
-        if (!finishing_) {
-            bool all_explained = misfit_charts().empty() && misfit_clusters().empty();
-            for (int i = 0; i < count && all_explained; ++i) all_explained = explained(i);
-            if (all_explained) finishing_ = true, finish_reason_ = StopReason::fitted;
-        }
-        if (finishing_) {
-            // One surface, one region: merge neighbours that lie on the same surface, and
-            // regions of a handful of faces (too few to tell a surface) into a neighbour.
-            if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
-            return stop(finish_reason_);
-        }
-    }
+    if (target > 0 && count == target) return decide_at_target();
+    if (automatic() && decide_finish()) return;
     if (count >= model_.face_count()) return stop(StopReason::exhausted);
     // Below a target count, a mesh whose every region the noise explains, with every
     // chart covered, has no surface left to find: more proxies would split surfaces
@@ -372,10 +321,74 @@ void Lloyd::decide() {
         for (int i = 0; i < count && all_noise; ++i) all_noise = proxies_[i].error <= noise_energy(i) && region_noise_[i] > 0;
         if (all_noise) return stop(StopReason::fitted);
     }
+    insert_batch();
+}
+
+void Lloyd::judge_teleport() {
+    // A teleport (one proxy more where the error is, then the cheapest merge) is judged
+    // once the count is back at the target.
+    teleport_pending_ = false;
+    if (energy_ < snapshot_.energy * (1 - options_.convergence)) return;
+    // The teleport did not pay: go back, and stop trying (the same move would be chosen again).
+    labels_ = snapshot_.labels;
+    errors_ = snapshot_.errors;
+    proxies_ = snapshot_.proxies;
+    energy_ = snapshot_.energy;
+    evaluate();
+    teleports_left_ = 0;
+}
+
+void Lloyd::decide_at_target() {
+    // A chart left to a neighbour's proxy while two proxies share one surface: the second
+    // goes to the chart.
+    if (repairs_left_ > 0 && options_.init == Initialization::features && !misfit_charts().empty() &&
+        merge_same_surface()) {
+        --repairs_left_;
+        insert_into_charts(1);
+        return start_operation(Operation::teleport);
+    }
+    if (teleports_left_ > 0) {
+        snapshot_ = {labels_, errors_, proxies_, energy_};
+        if (insert_farthest(1) == 1) {
+            --teleports_left_;
+            teleport_pending_ = true;
+            return start_operation(Operation::teleport);
+        }
+    }
+    stop(StopReason::proxies);
+}
+
+bool Lloyd::decide_finish() {
+    // The last insertion is judged by what it bought: too little, and growing stops. Three
+    // insertions in a row that do not pay end the growth (one alone may need more Lloyd
+    // iterations than its stage gave it).
+    if (energy_before_insert_ >= 0 && !finishing_ && misfit_charts().empty()) {
+        if (energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_)) unpaid_ = 0;
+        else if (++unpaid_ >= 3) finishing_ = true, finish_reason_ = StopReason::no_gain;
+    }
+    if (!finishing_) {
+        bool all_explained = misfit_charts().empty() && misfit_clusters().empty();
+        for (int i = 0; i < static_cast<int>(proxies_.size()) && all_explained; ++i) all_explained = explained(i);
+        if (all_explained) finishing_ = true, finish_reason_ = StopReason::fitted;
+    }
+    if (!finishing_) return false;
+    finish();
+    return true;
+}
+
+void Lloyd::finish() {
+    // One surface, one region: merge neighbours that lie on the same surface, and regions
+    // of a handful of faces (too few to tell a surface) into a neighbour.
+    if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
+    stop(finish_reason_);
+}
+
+void Lloyd::insert_batch() {
     // Far from the target, several proxies go in at once (into distinct regions): Lloyd
     // then runs once per batch rather than once per proxy.
+    const int count = static_cast<int>(proxies_.size());
     int batch = std::max(1, static_cast<int>(count * options_.insertion_batch));
-    if (target > 0) batch = std::min(batch, target - count);
+    if (options_.proxies > 0) batch = std::min(batch, options_.proxies - count);
     energy_before_insert_ = energy_;
     int added = options_.init == Initialization::features ? insert_into_charts(batch) : 0;
     if (added < batch && options_.init == Initialization::features) added += insert_into_clusters(batch - added);
@@ -384,8 +397,7 @@ void Lloyd::decide() {
     if (added == 0 && automatic()) {
         // Nowhere left to insert: finish as when everything is explained.
         finishing_ = true, finish_reason_ = StopReason::fitted;
-        if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
-        return stop(finish_reason_);
+        return finish();
     }
     if (added == 0) return stop(StopReason::exhausted);
     start_operation(Operation::insert);

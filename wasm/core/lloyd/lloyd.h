@@ -158,7 +158,13 @@ private:
 
     void initialize();
     void iterate();
+    // The next operation (or the stop), after Lloyd has settled.
     void decide();
+    void judge_teleport();
+    void decide_at_target();
+    bool decide_finish();  // automatic count: whether growth has ended (then finishes)
+    void finish();
+    void insert_batch();
     void start_operation(Operation operation);
     void stop(StopReason reason);
     void evaluate(const std::vector<char>* changed = nullptr);
