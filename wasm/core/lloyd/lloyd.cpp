@@ -306,8 +306,12 @@ void Lloyd::decide() {
     }
     if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
         return stop(StopReason::tolerance);
-    if (repairs_left_ > 0 && (target == 0 || count == target) && repair_stuck()) {
+    // A repair from a partition already repaired from has come round in a cycle (a sliver
+    // beside an exact surface, moved and regrown in the same place): no more from there.
+    if (repairs_left_ > 0 && (target == 0 || count == target) &&
+        std::find(repair_states_.begin(), repair_states_.end(), state) == repair_states_.end() && repair_stuck()) {
         --repairs_left_;
+        repair_states_.push_back(state);
         return start_operation(Operation::teleport);
     }
     if (target > 0 && count == target) return decide_at_target();

@@ -263,6 +263,7 @@ private:
     int splits_left_ = 0;
     std::vector<std::uint64_t> split_states_;  // partitions a split was made from (partition_hash)
     int repairs_left_ = 0;
+    std::vector<std::uint64_t> repair_states_;  // partitions a stuck-proxy repair was made from
     bool iterating_ = false;
     bool teleport_pending_ = false;
     bool finishing_ = false;              // automatic count: no more insertions, merges only
