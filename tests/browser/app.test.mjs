@@ -64,7 +64,8 @@ after(async () => {
 
 test('the app opens with an example approximated, no console errors, a drawn canvas', async () => {
   const page = await openApp();
-  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '7');
+  // The turned part's six surfaces (sphere, two cylinders, cone, two planes): no sliver.
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '6');
   const colours = await page.evaluate(() => {
     const canvas = document.querySelector('.vqsa-viewer').shadowRoot.querySelector('.vqsa-canvas canvas');
     const g = document.createElement('canvas');
@@ -203,10 +204,10 @@ test('20 rapid run/cancel cycles leave a consistent, usable app', async () => {
     await page.waitForFunction(() => document.querySelector('.vqsa-viewer').dataset.state !== 'running', null, { timeout: 30000 });
   }
   assert.ok(['idle', 'done'].includes(await state(page)));
-  await setProxies(page, 6);
+  await setProxies(page, 4);  // fewer than the axle's five surfaces: the count is met exactly
   await page.click('button:has-text("Run")');
   await waitFor(page, ['done']);
-  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '6');
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '4');
   assert.equal(await page.isVisible('[data-testid="error"]'), false);
   await page.close();
 });
@@ -282,7 +283,7 @@ test('<vqsa-viewer>: options as attributes and properties, one run per change, e
 test('a dropped CAD mesh runs with the automatic count until a count is chosen', async () => {
   const fresh = await openPage('index.html');
   await waitFor(fresh, ['done']);
-  assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '7');  // the example's own count
+  assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '6');  // the example's surfaces
   await drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' });
   await waitFor(fresh, ['running']);
   await waitFor(fresh, ['done']);

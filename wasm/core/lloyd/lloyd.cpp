@@ -300,6 +300,7 @@ void Lloyd::decide() {
         split_states_.push_back(state);
         return start_operation(Operation::split);
     }
+    if (finishing_ && target > 0) return finish();
     if (target > 0 && count > target) {
         if (merge_cheapest()) return start_operation(Operation::merge);
         return stop(StopReason::proxies);
@@ -323,7 +324,10 @@ void Lloyd::decide() {
     if (target > 0 && options_.init == Initialization::features && misfit_charts().empty() && misfit_clusters().empty()) {
         bool all_noise = true;
         for (int i = 0; i < count && all_noise; ++i) all_noise = proxies_[i].error <= noise_energy(i) && region_noise_[i] > 0;
-        if (all_noise) return stop(StopReason::fitted);
+        if (all_noise) {
+            finishing_ = true, finish_reason_ = StopReason::fitted;
+            return finish();
+        }
     }
     insert_batch();
 }
@@ -359,6 +363,18 @@ void Lloyd::decide_at_target() {
             return start_operation(Operation::teleport);
         }
     }
+    // Every move tried, a region of a handful of faces left (too few to tell a surface: a
+    // sliver beside exact surfaces, where the count exceeds the surfaces there are) goes
+    // to a neighbour it lies on one surface with, and the run ends with fewer proxies than
+    // asked, as fitted: as automatic growth ends, and as a run below its count whose every
+    // region the noise explains.
+    // All at once: Lloyd then settles once, not once per sliver (joint/30 has nine). A
+    // small true face (a thin plate's side) is no sliver: it lies on no neighbour's surface.
+    if (merge_sliver()) {
+        while (merge_sliver()) continue;
+        finishing_ = true, finish_reason_ = StopReason::fitted;
+        return start_operation(Operation::merge);
+    }
     stop(StopReason::proxies);
 }
 
@@ -381,9 +397,10 @@ bool Lloyd::decide_finish() {
 }
 
 void Lloyd::finish() {
-    // One surface, one region: merge neighbours that lie on the same surface, and regions
-    // of a handful of faces (too few to tell a surface) into a neighbour.
-    if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
+    // One surface, one region: growing, merge neighbours that lie on the same surface and
+    // regions of a handful of faces (too few to tell a surface) into a neighbour; at a
+    // count the user chose, only slivers.
+    if (automatic() ? merge_same_surface() || merge_handful() : merge_sliver()) return start_operation(Operation::merge);
     stop(finish_reason_);
 }
 
@@ -833,6 +850,12 @@ bool Lloyd::merge_handful() {
     return merge_least_cost(
         [&](int a, int b) { return std::min(proxies_[a].faces, proxies_[b].faces) < options_.min_quadric_faces; },
         [&](const Union& u, int a, int b) { return !union_on_two_parts(u, a, b) && !faces_both_ways(u.fit.quadric, a, b); });
+}
+
+bool Lloyd::merge_sliver() {
+    return merge_least_cost(
+        [&](int a, int b) { return std::min(proxies_[a].faces, proxies_[b].faces) < options_.min_quadric_faces; },
+        [&](const Union& u, int a, int b) { return !union_on_two_parts(u, a, b) && one_surface(u.fit.quadric, a, b); });
 }
 
 bool Lloyd::repair_stuck() {

@@ -218,6 +218,9 @@ private:
     bool merge_same_surface();
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
     bool merge_handful();
+    // A region of fewer than min_quadric_faces faces into a neighbour it lies on one
+    // surface with (one_surface), the cheapest.
+    bool merge_sliver();
     // Whether q explains regions a and b as one surface (see merge_same_surface).
     bool one_surface(const Quadric& q, int a, int b) const;
     // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
