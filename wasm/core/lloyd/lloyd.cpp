@@ -307,12 +307,20 @@ void Lloyd::decide() {
     }
     if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
         return stop(StopReason::tolerance);
-    // A repair from a partition already repaired from has come round in a cycle (a sliver
-    // beside an exact surface, moved and regrown in the same place): no more from there.
+    // Repairs are judged by what they bought, like insertions: three in a row that do not
+    // lower the energy end them (a proxy moved off a sliver beside exact surfaces only
+    // makes another sliver; one that pays late still may). A repair from a partition
+    // already repaired from has come round in a cycle: no more from there.
+    if (energy_before_repair_ >= 0) {
+        unpaid_repairs_ = energy_ < energy_before_repair_ * (1 - options_.convergence) ? 0 : unpaid_repairs_ + 1;
+        energy_before_repair_ = -1;
+        if (unpaid_repairs_ >= 3) repairs_left_ = 0;
+    }
     if (repairs_left_ > 0 && (target == 0 || count == target) &&
         std::find(repair_states_.begin(), repair_states_.end(), state) == repair_states_.end() && repair_stuck()) {
         --repairs_left_;
         repair_states_.push_back(state);
+        energy_before_repair_ = energy_;
         return start_operation(Operation::teleport);
     }
     if (target > 0 && count == target) return decide_at_target();
@@ -853,9 +861,56 @@ bool Lloyd::merge_handful() {
 }
 
 bool Lloyd::merge_sliver() {
-    return merge_least_cost(
-        [&](int a, int b) { return std::min(proxies_[a].faces, proxies_[b].faces) < options_.min_quadric_faces; },
-        [&](const Union& u, int a, int b) { return !union_on_two_parts(u, a, b) && one_surface(u.fit.quadric, a, b); });
+    // A sliver: a region of fewer than min_quadric_faces faces (too few to tell a quadric)
+    // lying on a neighbour's surface: within its noise (or its own fit's error) of the
+    // neighbour's own quadric, no face off that surface's normal, facing the way the
+    // neighbour's faces beside it do. Judged against the neighbour's quadric, not a union's
+    // fit: slivers merged in a row would bend a free quadric onto the next surface (a
+    // turned part at 50 proxies has 37 slivers).
+    const int count = static_cast<int>(proxies_.size());
+    const DualGraph& g = model_.graph;
+    std::vector<std::vector<int>> faces(count);
+    for (int f = 0; f < model_.face_count(); ++f)
+        if (proxies_[labels_[f]].faces < options_.min_quadric_faces) faces[labels_[f]].push_back(f);
+    int sliver = -1, into = -1;
+    double best = std::numeric_limits<double>::infinity();
+    FaceErrors evaluator;
+    for (int s = 0; s < count; ++s) {
+        if (faces[s].empty()) continue;
+        std::vector<int> neighbours;
+        for (int f : faces[s])
+            for (int e = g.begin(f); e < g.end(f); ++e)
+                if (labels_[g.neighbor[e]] != s) neighbours.push_back(labels_[g.neighbor[e]]);
+        std::sort(neighbours.begin(), neighbours.end());
+        neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+        for (int n : neighbours) {
+            const Quadric& q = proxies_[n].quadric;
+            evaluator.reset(model_, {q});
+            double error = 0, facing = 0, beside = 0;
+            bool on_surface = true;
+            for (int f : faces[s]) {
+                error += evaluator(f, 0);
+                on_surface = on_surface && !off_normal(q, f);
+                const Vec3 normal = q.gradient(model_.barycentres[f]);
+                if (normal.norm() > 0) facing += model_.areas[f] * features_.normals[f].dot(normal.normalized());
+                for (int e = g.begin(f); e < g.end(f); ++e) {
+                    const int h = g.neighbor[e];
+                    const Vec3 other = q.gradient(model_.barycentres[h]);
+                    if (labels_[h] == n && other.norm() > 0) beside += model_.areas[h] * features_.normals[h].dot(other.normalized());
+                }
+            }
+            const Proxy& p = proxies_[s];
+            const double tolerance = std::max(1.25 * p.error + 1e-12 * p.area,
+                                              options_.chart_factor * options_.chart_factor * region_noise_[s]);
+            if (!on_surface || !(error <= tolerance) || !(facing * beside > 0) || error >= best) continue;
+            best = error, sliver = s, into = n;
+        }
+    }
+    if (sliver < 0) return false;
+    const int kept = into > sliver ? into - 1 : into;
+    merge_pair(into, sliver, {proxies_[into].quadric, proxies_[into].fit_error});
+    proxies_[kept].fitted = false;  // refitted with its new faces by the next iteration
+    return true;
 }
 
 bool Lloyd::repair_stuck() {

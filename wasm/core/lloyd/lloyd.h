@@ -267,6 +267,8 @@ private:
     std::vector<std::uint64_t> split_states_;  // partitions a split was made from (partition_hash)
     int repairs_left_ = 0;
     std::vector<std::uint64_t> repair_states_;  // partitions a stuck-proxy repair was made from
+    double energy_before_repair_ = -1;           // the last repair's, until it is judged
+    int unpaid_repairs_ = 0;                     // repairs in a row that did not pay
     bool iterating_ = false;
     bool teleport_pending_ = false;
     bool finishing_ = false;              // automatic count: no more insertions, merges only
