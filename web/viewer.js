@@ -19,6 +19,7 @@ import { format, typeName } from './ui/format.js';
 import { createInspector } from './ui/inspector.js';
 import { drawPlot } from './ui/plot.js';
 import { createScene } from './ui/scene.js';
+import { createTimeline } from './ui/timeline.js';
 import { VqsaClient } from './vqsa-client.js';
 import { examples as exampleNames, options as schema } from './vqsa-schema.js';
 
@@ -34,7 +35,12 @@ const DISPLAY_FIELDS = [
   { name: 'colouring', label: 'colour', kind: 'choice', choices: ['region', 'type'],
     labels: { region: 'By region', type: 'By quadric type' } },
   { name: 'wireframe', kind: 'boolean' },
+  { name: 'up', label: 'up axis', kind: 'choice', choices: ['y', 'z'], labels: { y: 'Y up', z: 'Z up' } },
 ];
+const STANDARD_VIEWS = { iso: 'Iso', front: 'Front', top: 'Top', side: 'Side' };
+// The regions out of focus fade towards this grey while one is in focus (a lighter focus
+// alone was invisible on the back of the model).
+const FADED = [0.86, 0.87, 0.89];
 // The approximation's settings: the core's option schema, under its camelCase names.
 const OPTION_FIELDS = schema.map((o) => ({ ...o, name: o.js, label: o.name.replaceAll('-', ' ') }));
 const MAX_FILE_BYTES = 1.5 * 1024 ** 3;
@@ -54,7 +60,7 @@ export function createViewer(host, options = {}) {
   const api = new EventTarget();
   const settings = Object.fromEntries(OPTION_FIELDS.map((f) => [f.name, f.default]));
   for (const f of OPTION_FIELDS) if (options[f.name] !== undefined) settings[f.name] = options[f.name];
-  const display = { view: 'smoothed', colouring: 'region', wireframe: false };
+  const display = { view: 'smoothed', colouring: 'region', wireframe: false, up: 'y' };
   // A file the user brings runs with the automatic count until a count is chosen (in the
   // panel, or by the embedding page).
   let countChosen = options.proxies !== undefined;
@@ -76,10 +82,14 @@ export function createViewer(host, options = {}) {
     dataset: { testid: 'download-glb' } });
   const reportButton = element('button', { textContent: 'Report', title: 'Download the JSON report', disabled: true,
     dataset: { testid: 'download-report' } });
+  const pngButton = element('button', { textContent: 'PNG', title: 'Download the view as a PNG picture', disabled: true,
+    dataset: { testid: 'download-png' } });
   const meshName = element('span', { className: 'vqsa-mesh-name' });
-  const toolbar = element('div', { className: 'vqsa-toolbar' }, element('span', { className: 'vqsa-title', textContent: 'vqsa' }),
+  const toolbar = element('div', { className: 'vqsa-toolbar' },
+    element('span', { className: 'vqsa-title', textContent: 'vqsa', title: 'variational quadric shape approximation' }),
+    element('span', { className: 'vqsa-tagline', textContent: 'the quadric surfaces of a mesh' }),
     meshName, openButton, examples, runButton, cancelButton, element('span', { className: 'vqsa-spacer' }),
-    glbButton, reportButton, fileInput);
+    pngButton, glbButton, reportButton, fileInput);
 
   const canvasHost = element('div', { className: 'vqsa-canvas' });
   const status = element('div', { className: 'vqsa-status' });
@@ -88,16 +98,34 @@ export function createViewer(host, options = {}) {
   const errorBox = element('div', { className: 'vqsa-error', hidden: true, role: 'alert', dataset: { testid: 'error' } });
   const legend = element('div', { className: 'vqsa-legend' });
   const dropHint = element('div', { className: 'vqsa-drop', textContent: 'Drop a mesh to approximate it' });
-  const stage = element('div', { className: 'vqsa-stage' }, canvasHost, progress, errorBox, legend, dropHint);
+  const hint = element('div', { className: 'vqsa-hint', textContent: 'Drop an OBJ, STL, PLY, OFF or glTF file to approximate it' });
+  const views = element('div', { className: 'vqsa-views' }, ...Object.entries(STANDARD_VIEWS).map(([name, label]) => {
+    const button = element('button', { textContent: label, title: `${label} view` });
+    button.addEventListener('click', () => scene.view(name));
+    return button;
+  }));
+  const fit = element('button', { textContent: 'Fit', title: 'Frame the whole model' });
+  fit.addEventListener('click', () => scene.frame());
+  views.append(fit);
+  const timeline = createTimeline((frame) => showFrame(frame));
+  const stage = element('div', { className: 'vqsa-stage' }, canvasHost, progress, errorBox, legend, views, hint, timeline.element, dropHint);
 
   const plot = element('canvas', { className: 'vqsa-plot', width: 320, height: 120 });
-  const inspector = createInspector((region, pin) => focus(region, pin));
+  const inspector = createInspector({
+    focus: (region, pin) => focus(region, pin),
+    visibility: () => applyVisibility(),
+    frame: (region) => {
+      const labels = shownLabels();
+      scene.frame(labels ? (f) => labels[f] === region : null);
+    },
+  });
   const approximation = createControls('Approximation', OPTION_FIELDS, settings, (name) => {
     if (name === 'proxies') countChosen = true;
   });
   const displayControls = createControls('Display', DISPLAY_FIELDS, display, (name, value) => {
     if (name === 'view') showView();
     else if (name === 'colouring') paint(), fillTable();
+    else if (name === 'up') scene.setUp(value);
     else scene.setWireframe(value);
   });
   const side = element('div', { className: 'vqsa-side' }, approximation.element, displayControls.element,
@@ -114,6 +142,7 @@ export function createViewer(host, options = {}) {
   let result = null;          // the last result
   let focused = -1, pinned = false;
   let history = [];           // [proxies, rms] during the run
+  let scrubbed = null;        // the timeline's frame shown instead of the result
   let busy = false;
 
   function setState(state) {
@@ -122,6 +151,8 @@ export function createViewer(host, options = {}) {
     cancelButton.disabled = state !== 'running';
     // After a failed load the result shown is still the worker's: it stays downloadable.
     glbButton.disabled = reportButton.disabled = !(result && (state === 'done' || state === 'error'));
+    pngButton.disabled = !mesh || state === 'loading';
+    host.classList.toggle('vqsa-empty', !mesh);
     api.dispatchEvent(new CustomEvent('state', { detail: state }));
   }
 
@@ -144,19 +175,21 @@ export function createViewer(host, options = {}) {
   }
 
   // ---- colours -------------------------------------------------------------------------
-  const showsHeat = () => display.view === 'error' && result?.vertexErrors?.length && !live;
+  const showsHeat = () => display.view === 'error' && result?.vertexErrors?.length && !live && !scrubbed;
+  // The labels on show: a timeline frame, the run's progress, or the result.
+  const shownLabels = () => scrubbed?.labels ?? live ?? (result && (display.view === 'lloyd' ? result.lloydFaceLabels : result.faceLabels));
 
   function faceColour(region) {
     if (region < 0) return NEUTRAL;
     const type = result?.proxies?.[region]?.type;
-    const c = display.colouring === 'type' && type ? typeColour(type) : regionColour(region);
-    return region === focused ? c.map((v) => v + (1 - v) * 0.55) : c;
+    const c = display.colouring === 'type' && type && !scrubbed ? typeColour(type) : regionColour(region);
+    return focused >= 0 && region !== focused ? c.map((v, k) => v + (FADED[k] - v) * 0.75) : c;
   }
 
   function paint() {
     if (!mesh) return;
     const array = scene.colours(), n = mesh.triangles.length / 3;
-    const labels = live ?? (result && (display.view === 'lloyd' ? result.lloydFaceLabels : result.faceLabels));
+    const labels = shownLabels();
     if (showsHeat()) {
       const errors = result.vertexErrors, t = mesh.triangles, scale = heatScale();
       for (let f = 0; f < n; ++f)
@@ -190,8 +223,18 @@ export function createViewer(host, options = {}) {
     if (shownGeometry !== wanted) {
       scene.setGeometry(projected ? result.projected : mesh.positions, mesh.triangles);
       shownGeometry = wanted;
+      applyVisibility();
     }
     paint();
+  }
+
+  // Faces of hidden regions are not drawn (the inspector's visibility and isolate).
+  function applyVisibility() {
+    const hidden = inspector.hidden, labels = shownLabels();
+    if (!hidden.size || !labels || live) return scene.setVisibleFaces(null);
+    const faces = [];
+    for (let f = 0; f < labels.length; ++f) if (!hidden.has(labels[f])) faces.push(f);
+    scene.setVisibleFaces(faces);
   }
   let shownGeometry = null;
 
@@ -229,9 +272,9 @@ export function createViewer(host, options = {}) {
   }
 
   function regionAt(event) {
-    if (!result || live || !mesh) return -1;
+    if (!result || live || scrubbed || !mesh) return -1;
     const face = scene.pick(event);
-    return face < 0 ? -1 : (display.view === 'lloyd' ? result.lloydFaceLabels : result.faceLabels)[face];
+    return face < 0 ? -1 : shownLabels()[face];
   }
   let pointerDown = null;
   scene.canvas.addEventListener('pointerdown', (e) => { pointerDown = [e.clientX, e.clientY]; });
@@ -245,6 +288,8 @@ export function createViewer(host, options = {}) {
   function forgetResult() {
     result = null;
     history = [];
+    scrubbed = null;
+    timeline.clear();
     focused = -1;
     pinned = false;
     fillTable();
@@ -341,6 +386,7 @@ export function createViewer(host, options = {}) {
 
   function showProgress(p) {
     live = p.labels;
+    timeline.record({ labels: p.labels, proxies: p.proxies, rms: p.rms, stage: p.stage, phase: p.phase, iteration: p.iteration });
     host.dataset.proxies = String(p.proxies);
     if (p.stage === 'lloyd') history.push([p.proxies, p.rms]);
     setStatus(p.stage === 'lloyd'
@@ -351,20 +397,41 @@ export function createViewer(host, options = {}) {
     api.dispatchEvent(new CustomEvent('progress', { detail: p }));
   }
 
+  function summary() {
+    const report = result.reportObject, metrics = report.metrics;
+    return `${result.proxies.length} proxies · RMS ${format(report.rms_error_relative)} of the size` +
+      (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : '');
+  }
+
   function showResult(done) {
     live = null;
     result = done;
     result.reportObject = JSON.parse(done.report);
     host.dataset.proxies = String(done.proxies.length);
-    const metrics = result.reportObject.metrics;
-    setStatus(`${done.proxies.length} proxies · RMS ${format(result.reportObject.rms_error_relative)} of the size` +
-      (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : ''), 1);
+    setStatus(summary(), 1);
     history.push([done.proxies.length, result.reportObject.rms_error_relative]);
+    timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms: result.reportObject.rms_error_relative });
+    timeline.finish();
     drawPlot(plot, history);
     fillTable();
     showView();
     setState('done');
     api.dispatchEvent(new CustomEvent('result', { detail: result.reportObject }));
+  }
+
+  // A recorded state of the run (null: the result), from the timeline.
+  function showFrame(frame) {
+    scrubbed = frame;
+    if (frame) {
+      const where = frame.stage === 'lloyd' ? `${frame.phase} · iteration ${frame.iteration}` : frame.stage;
+      setStatus(`replay: ${where} · ${frame.proxies} proxies · RMS ${format(frame.rms)}`, null);
+    } else {
+      setStatus(summary(), 1);
+    }
+    host.dataset.frame = frame ? String(timeline.frames.indexOf(frame)) : '';
+    showView();
+    applyVisibility();
+    drawPlot(plot, history, frame ? [frame.proxies, frame.rms] : null);
   }
 
   // `overrides`: options of the schema by their camelCase names; they stay set.
@@ -436,6 +503,7 @@ export function createViewer(host, options = {}) {
   cancelButton.addEventListener('click', cancel);
   glbButton.addEventListener('click', () => download(result.glb, `${baseName()}.vqsa.glb`, 'model/gltf-binary'));
   reportButton.addEventListener('click', () => download(result.report, `${baseName()}.vqsa.json`, 'application/json'));
+  pngButton.addEventListener('click', async () => download(await scene.screenshot(), `${baseName()}.vqsa.png`, 'image/png'));
   const detachDropZone = attachDropZone(options.dropTarget ?? host, host, (file) => load(file).then(runBrought));
 
   drawPlot(plot, history);

@@ -359,3 +359,97 @@ test('a file that fails to load leaves the model, status and downloads as they w
   assert.deepEqual(consoleErrors, []);
   await fresh.close();
 });
+
+// A small digest of what the canvas shows: distinct colours on a 32×32 thumbnail.
+const canvasDigest = (p) => p.evaluate(() => {
+  const canvas = document.querySelector('.vqsa-viewer').shadowRoot.querySelector('.vqsa-canvas canvas');
+  const g = document.createElement('canvas');
+  g.width = 32, g.height = 32;
+  const c = g.getContext('2d');
+  c.drawImage(canvas, 0, 0, 32, 32);
+  return Array.from(c.getImageData(0, 0, 32, 32).data).join(',');
+});
+
+test('the timeline replays the run: each recorded state, then the result', async () => {
+  const page = await openApp();
+  const slider = page.locator('.vqsa-timeline input[type="range"]');
+  assert.equal(await slider.isVisible(), true);
+  const last = Number(await slider.getAttribute('max'));
+  assert.ok(last >= 3, `only ${last + 1} states recorded`);
+  const result = await canvasDigest(page);
+  await slider.fill('0');
+  assert.match(await page.textContent('.vqsa-status'), /^replay: .* · 1 proxies/);
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-frame'), '0');
+  await page.waitForTimeout(100);
+  assert.notEqual(await canvasDigest(page), result);
+  await page.click('button[aria-label="replay the run"]');
+  await page.waitForFunction(() => Number(document.querySelector('.vqsa-viewer').dataset.frame) > 0);
+  await page.waitForFunction(() => document.querySelector('.vqsa-viewer').dataset.frame === '', null, { timeout: 20000 });
+  assert.doesNotMatch(await page.textContent('.vqsa-status'), /replay/);
+  await page.close();
+});
+
+test('the inspector: keyboard focus, isolate, hide, frame, copyable JSON', async () => {
+  const page = await openApp();
+  const rows = page.locator('.vqsa-table tr[data-region]');
+  const count = await rows.count();
+  await rows.first().focus();
+  await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('Enter');
+  assert.match(await page.textContent('.vqsa-detail'), /^region 1:/);
+  const before = await canvasDigest(page);
+  await page.keyboard.press('i');  // isolate region 1
+  const shown = await rows.evaluateAll((r) => r.map((row) => row.querySelector('input').checked));
+  assert.deepEqual(shown, Array.from({ length: count }, (_, i) => i === 1));
+  await page.waitForTimeout(100);
+  assert.notEqual(await canvasDigest(page), before);
+  await page.keyboard.press('i');  // again: everything back
+  assert.equal((await rows.evaluateAll((r) => r.filter((row) => row.querySelector('input').checked))).length, count);
+  await page.keyboard.press('h');
+  assert.equal(await rows.nth(1).evaluate((row) => row.classList.contains('vqsa-hidden')), true);
+  await page.keyboard.press('f');  // frame it: the camera moves
+  await page.waitForTimeout(100);
+  assert.ok(await page.isVisible('.vqsa-detail button:has-text("Copy JSON")'));
+  await page.close();
+});
+
+test('up axis, standard views and the PNG download', async () => {
+  const page = await openApp();
+  const iso = await canvasDigest(page);
+  await page.selectOption('[data-option="up"] select', 'z');
+  await page.waitForTimeout(100);
+  assert.notEqual(await canvasDigest(page), iso);
+  await page.click('.vqsa-views button:has-text("Top")');
+  await page.waitForTimeout(100);
+  const top = await canvasDigest(page);
+  await page.click('.vqsa-views button:has-text("Front")');
+  await page.waitForTimeout(100);
+  assert.notEqual(await canvasDigest(page), top);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-png"]')]);
+  const png = readFileSync(await download.path());
+  assert.deepEqual([...png.subarray(0, 8)], [137, 80, 78, 71, 13, 10, 26, 10]);
+  assert.ok(png.length > 10000, `a ${png.length}-byte PNG looks blank`);
+  await page.close();
+});
+
+test('at 390×844 the controls stay reachable and usable', async () => {
+  const page = await browser.newPage({ viewport: { width: 390, height: 844 } });
+  guardNetwork(page, site.url, offsite);
+  await page.goto(`${site.url}/index.html`);
+  await waitFor(page, ['done']);
+  const box = (selector) => page.locator(selector).first().boundingBox();
+  for (const selector of ['button:has-text("Open")', 'button:has-text("Run")', '[data-testid="download-glb"]']) {
+    const b = await box(selector);
+    assert.ok(b.width >= 30 && b.height >= 20 && b.x >= 0 && b.x + b.width <= 390, `${selector}: ${JSON.stringify(b)}`);
+  }
+  const canvas = await box('.vqsa-canvas canvas');
+  assert.ok(canvas.width >= 380 && canvas.height >= 300, JSON.stringify(canvas));
+  const toolbar = await box('.vqsa-toolbar');
+  assert.ok(toolbar.height <= 100, `the toolbar takes ${toolbar.height} px`);
+  const proxies = page.locator('[data-option="proxies"] input[type="number"]');
+  await proxies.scrollIntoViewIfNeeded();
+  const field = await proxies.boundingBox();
+  assert.ok(field.width >= 80 && field.height >= 20, JSON.stringify(field));
+  await page.screenshot({ path: join(shots, 'app-narrow.png'), fullPage: true });
+  await page.close();
+});

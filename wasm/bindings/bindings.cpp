@@ -12,6 +12,7 @@
 #include <emscripten/emscripten.h>
 #include <emscripten/val.h>
 
+#include <cstring>
 #include <memory>
 
 using emscripten::val;
@@ -81,13 +82,19 @@ public:
         });
     }
 
-    // Steps for about `milliseconds` (at least one step); false when done.
+    // Steps for about `milliseconds` (at least one step), or up to a Lloyd operation
+    // (insert, split, merge, teleport), so that the page sees every proxy count the run
+    // passes through; false when done.
     bool step_for(double milliseconds) {
         return guarded([&] {
             Pipeline& p = pipeline();
             const double until = emscripten_get_now() + milliseconds;
+            auto operation = [&] {
+                const Progress now = p.progress();
+                return now.stage == Stage::lloyd && std::strcmp(now.phase, "lloyd") != 0;
+            };
             bool more = p.step();
-            while (more && emscripten_get_now() < until) more = p.step();
+            while (more && !operation() && emscripten_get_now() < until) more = p.step();
             return more;
         });
     }

@@ -30,12 +30,14 @@ export function polynomial(c) {
 
 // The one parameter that tells a region's surface at a glance (the table's column).
 export function keyParameters(proxy) {
+  // A type without its parameter (a general quadric of no real points has none) prints
+  // nothing rather than failing.
   const q = proxy.params ?? {};
   switch (proxy.type) {
-    case 'plane': return `n ${vector(q.normal, 3)}`;
+    case 'plane': return q.normal ? `n ${vector(q.normal, 3)}` : '';
     case 'sphere':
-    case 'cylinder': return `r ${format(q.radius)}`;
-    case 'cone': return degrees(q.half_angle);
+    case 'cylinder': return q.radius !== undefined ? `r ${format(q.radius)}` : '';
+    case 'cone': return q.half_angle !== undefined ? degrees(q.half_angle) : '';
     default: return q.semi_axes ? `a ${vector(q.semi_axes, 3)}` : '';
   }
 }

@@ -1,6 +1,7 @@
 // The RMS error against the proxy count, on a log scale: the paper's progressive
 // insertion as a curve. `history`: [count, rms] pairs in the order seen.
-export function drawPlot(canvas, history) {
+// `marker`: a [count, rms] to circle (the timeline's state), or null.
+export function drawPlot(canvas, history, marker = null) {
   const g = canvas.getContext('2d'), w = canvas.width, h = canvas.height, pad = 26;
   g.clearRect(0, 0, w, h);
   g.fillStyle = '#fff';
@@ -27,4 +28,10 @@ export function drawPlot(canvas, history) {
   g.beginPath();
   points.forEach(([n, r], i) => (i ? g.lineTo(x(n), y(r)) : g.moveTo(x(n), y(r))));
   g.stroke();
+  if (marker && marker[1] > 0) {
+    g.fillStyle = '#d0402a';
+    g.beginPath();
+    g.arc(x(marker[0]), y(marker[1]), 3.5, 0, 2 * Math.PI);
+    g.fill();
+  }
 }

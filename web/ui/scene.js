@@ -1,5 +1,6 @@
 // The 3D view: one flat-shaded mesh with per-face colours, an optional wireframe, orbit
-// controls, and rendering on demand (an idle page draws nothing).
+// controls, standard views in a Y- or Z-up frame, face visibility, and rendering on demand
+// (an idle page draws nothing).
 import * as THREE from '../vendor/three/three.module.js';
 import { OrbitControls } from '../vendor/three/addons/controls/OrbitControls.js';
 
@@ -8,10 +9,13 @@ export function createScene(host) {
   renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
   host.append(renderer.domElement);
   const scene = new THREE.Scene();
-  scene.background = new THREE.Color(0xf4f5f7);
+  scene.background = new THREE.Color(matchMedia('(prefers-color-scheme: dark)').matches ? 0x1c2027 : 0xf4f5f7);
   const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.enableDamping = true;
+  // Reachable by keyboard: focused, the arrow keys pan.
+  renderer.domElement.tabIndex = 0;
+  controls.listenToKeyEvents(renderer.domElement);
   scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.6));
   const sun = new THREE.DirectionalLight(0xffffff, 1.6);
   sun.position.set(1, 2, 1.5);
@@ -64,6 +68,7 @@ export function createScene(host) {
     geometry.computeBoundingSphere();
     surface.geometry.dispose();
     surface.geometry = wire.geometry = geometry;
+    visibleFaces = null;
     requestRender();
   }
 
@@ -74,14 +79,49 @@ export function createScene(host) {
     requestRender();
   }
 
-  function frame() {
-    const sphere = surface.geometry.boundingSphere;
+  // Views in the model's own frame: right, up (Y or Z, a display setting) and towards the
+  // viewer.
+  let upAxis = 'y';
+  const basis = () => (upAxis === 'z'
+    ? [new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 0, 1), new THREE.Vector3(0, -1, 0)]
+    : [new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 1, 0), new THREE.Vector3(0, 0, 1)]);
+  const VIEWS = { iso: [0.55, 0.45, 0.75], front: [0, 0, 1], top: [0, 1, 0.001], side: [1, 0, 0] };
+  let direction = 'iso';
+
+  // Frames the faces `keep(face)` accepts (all without it) from the current direction.
+  function frame(keep = null) {
+    let sphere = surface.geometry.boundingSphere;
+    if (keep) {
+      const xyz = surface.geometry.getAttribute('position').array, points = [];
+      for (let f = 0; f < xyz.length / 9; ++f)
+        if (keep(f)) for (let k = 0; k < 3; ++k) points.push(new THREE.Vector3().fromArray(xyz, 9 * f + 3 * k));
+      if (points.length) sphere = new THREE.Sphere().setFromPoints(points);
+    }
+    if (!sphere || !(sphere.radius > 0)) return;
+    const [r, u, t] = basis(), [a, b, c] = VIEWS[direction];
+    const towards = r.multiplyScalar(a).add(u.clone().multiplyScalar(b)).add(t.multiplyScalar(c)).normalize();
     const distance = (sphere.radius / Math.sin((camera.fov * Math.PI) / 360)) * 1.15;
+    camera.up.copy(u);
     controls.target.copy(sphere.center);
-    camera.position.copy(sphere.center).add(new THREE.Vector3(0.55, 0.45, 0.75).normalize().multiplyScalar(distance));
+    camera.position.copy(sphere.center).addScaledVector(towards, distance);
     camera.near = distance / 100;
     camera.far = distance * 10;
     camera.updateProjectionMatrix();
+    controls.update();
+    requestRender();
+  }
+
+  // Only these faces are drawn and picked (null: all).
+  let visibleFaces = null;
+  function setVisibleFaces(faces) {
+    visibleFaces = faces;
+    const geometry = surface.geometry;
+    if (!faces) geometry.setIndex(null);
+    else {
+      const index = new Uint32Array(3 * faces.length);
+      faces.forEach((f, i) => index.set([3 * f, 3 * f + 1, 3 * f + 2], 3 * i));
+      geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    }
     requestRender();
   }
 
@@ -91,12 +131,28 @@ export function createScene(host) {
     const rect = renderer.domElement.getBoundingClientRect();
     pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
     raycaster.setFromCamera(pointer, camera);
-    return raycaster.intersectObject(surface)[0]?.faceIndex ?? -1;
+    const face = raycaster.intersectObject(surface)[0]?.faceIndex ?? -1;
+    return face >= 0 && visibleFaces ? visibleFaces[face] : face;
   }
 
   return {
     canvas: renderer.domElement,
-    setGeometry, colours, coloursChanged, frame, pick, requestRender,
+    setGeometry, colours, coloursChanged, frame, pick, requestRender, setVisibleFaces,
+    // 'y' or 'z': which model axis points up; the view is framed again.
+    setUp(axis) {
+      upAxis = axis;
+      frame();
+    },
+    // 'iso', 'front', 'top' or 'side', in the model's up frame.
+    view(name) {
+      direction = name;
+      frame();
+    },
+    // The picture as drawn, PNG.
+    screenshot() {
+      renderer.render(scene, camera);
+      return new Promise((resolve) => renderer.domElement.toBlob(resolve, 'image/png'));
+    },
     setWireframe(on) {
       wire.visible = on;
       requestRender();
