@@ -17,19 +17,25 @@ void Flooding::push(const Entry& e) {
 }
 
 Flooding::Entry Flooding::pop() {
+    // Bottom-up: the hole at the root goes down to a leaf along the smaller children (one
+    // comparison per level), then the last entry rises from there; it belongs near the
+    // bottom, so this compares less than sifting it down. Same order, same pops.
     const Entry top = heap_.front();
     const Entry last = heap_.back();
     heap_.pop_back();
     const std::size_t n = heap_.size();
     if (n == 0) return top;
     std::size_t i = 0;
-    for (;;) {
-        std::size_t child = 2 * i + 1;
-        if (child >= n) break;
+    for (std::size_t child = 1; child < n; child = 2 * i + 1) {
         if (child + 1 < n && heap_[child] > heap_[child + 1]) ++child;
-        if (!(last > heap_[child])) break;
         heap_[i] = heap_[child];
         i = child;
+    }
+    while (i > 0) {
+        const std::size_t parent = (i - 1) / 2;
+        if (!(heap_[parent] > last)) break;
+        heap_[i] = heap_[parent];
+        i = parent;
     }
     heap_[i] = last;
     return top;
