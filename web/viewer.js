@@ -36,6 +36,9 @@ const DISPLAY_FIELDS = [
     labels: { region: 'By region', type: 'By quadric type' } },
   { name: 'wireframe', kind: 'boolean' },
   { name: 'up', label: 'up axis', kind: 'choice', choices: ['y', 'z'], labels: { y: 'Y up', z: 'Z up' } },
+  // 0 is off: the cut's height along the up axis, as a fraction of the model's.
+  { name: 'section', label: 'section', kind: 'number', min: 0.01, max: 1, typicalWhenOn: 0.5, slider: true,
+    help: 'cut the model across the up axis at this fraction of its height' },
 ];
 const STANDARD_VIEWS = { iso: 'Iso', front: 'Front', top: 'Top', side: 'Side' };
 // The regions out of focus fade towards this grey while one is in focus (a lighter focus
@@ -60,7 +63,7 @@ export function createViewer(host, options = {}) {
   const api = new EventTarget();
   const settings = Object.fromEntries(OPTION_FIELDS.map((f) => [f.name, f.default]));
   for (const f of OPTION_FIELDS) if (options[f.name] !== undefined) settings[f.name] = options[f.name];
-  const display = { view: 'smoothed', colouring: 'region', wireframe: false, up: 'y' };
+  const display = { view: 'smoothed', colouring: 'region', wireframe: false, up: 'y', section: 0 };
   // A file the user brings runs with the automatic count until a count is chosen (in the
   // panel, or by the embedding page).
   let countChosen = options.proxies !== undefined;
@@ -126,6 +129,7 @@ export function createViewer(host, options = {}) {
     if (name === 'view') showView();
     else if (name === 'colouring') paint(), fillTable();
     else if (name === 'up') scene.setUp(value);
+    else if (name === 'section') scene.setSection(value > 0 ? value : null);
     else scene.setWireframe(value);
   });
   const side = element('div', { className: 'vqsa-side' }, approximation.element, displayControls.element,

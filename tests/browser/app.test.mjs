@@ -453,3 +453,19 @@ test('at 390×844 the controls stay reachable and usable', async () => {
   await page.screenshot({ path: join(shots, 'app-narrow.png'), fullPage: true });
   await page.close();
 });
+
+test('a section plane cuts the model along the up axis', async () => {
+  const page = await openApp();
+  const whole = await canvasDigest(page);
+  await page.check('[data-option="section"] input[type="checkbox"]');
+  await page.waitForTimeout(100);
+  const cut = await canvasDigest(page);
+  assert.notEqual(cut, whole);
+  await page.locator('[data-option="section"] input[type="range"]').fill('0.2');
+  await page.waitForTimeout(100);
+  assert.notEqual(await canvasDigest(page), cut);
+  await page.uncheck('[data-option="section"] input[type="checkbox"]');
+  await page.waitForTimeout(100);
+  assert.equal(await canvasDigest(page), whole);
+  await page.close();
+});

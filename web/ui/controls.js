@@ -1,9 +1,10 @@
 // A settings panel built from field descriptions: the core's option schema (the same
 // names, ranges and help as the CLI's flags) or the viewer's own display settings.
 //
-// A field: {name, label, kind, min, max, choices, labels, help, typicalWhenOn}; kinds as
-// the schema's: count (a number or 'auto'), integer, number, boolean, choice. A number
-// with `typicalWhenOn` is off at 0: it shows as a switch and a field.
+// A field: {name, label, kind, min, max, choices, labels, help, typicalWhenOn, slider};
+// kinds as the schema's: count (a number or 'auto'), integer, number, boolean, choice. A
+// number with `typicalWhenOn` is off at 0: it shows as a switch and a field (a slider with
+// `slider`).
 import { element } from './dom.js';
 
 let nextId = 0;
@@ -39,7 +40,9 @@ export function createControls(title, fields, values, onChange) {
     // count, integer, number: a field, and for a count ('auto') or a number that 0
     // turns off, a switch beside it.
     const integer = field.kind !== 'number';
-    const input = element('input', { type: 'number', id, min: field.min, max: field.max, step: integer ? 1 : 'any' });
+    const input = field.slider
+      ? element('input', { type: 'range', id, min: field.min, max: field.max, step: (field.max - field.min) / 100 })
+      : element('input', { type: 'number', id, min: field.min, max: field.max, step: integer ? 1 : 'any' });
     const switchable = field.kind === 'count' || field.typicalWhenOn !== undefined;
     const off = field.kind === 'count' ? 'auto' : 0;
     const current = values[field.name];
@@ -51,7 +54,8 @@ export function createControls(title, fields, values, onChange) {
       v = Math.min(Math.max(integer ? Math.round(v) : v, field.min ?? -Infinity), field.max ?? Infinity);
       return v;
     };
-    input.addEventListener('change', () => {
+    // A slider acts while it moves; a field once its value is entered.
+    input.addEventListener(field.slider ? 'input' : 'change', () => {
       remembered = read();
       set(remembered);
       update();

@@ -1,11 +1,12 @@
 // The 3D view: one flat-shaded mesh with per-face colours, an optional wireframe, orbit
-// controls, standard views in a Y- or Z-up frame, face visibility, and rendering on demand
-// (an idle page draws nothing).
+// controls, standard views in a Y- or Z-up frame, a section plane, face visibility, and
+// rendering on demand (an idle page draws nothing).
 import * as THREE from '../vendor/three/three.module.js';
 import { OrbitControls } from '../vendor/three/addons/controls/OrbitControls.js';
 
 export function createScene(host) {
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.localClippingEnabled = true;
   renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
   host.append(renderer.domElement);
   const scene = new THREE.Scene();
@@ -24,6 +25,10 @@ export function createScene(host) {
   const material = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.75, metalness: 0, side: THREE.DoubleSide,
     flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
   const wireMaterial = new THREE.MeshBasicMaterial({ color: 0x20242c, wireframe: true, transparent: true, opacity: 0.25 });
+  // The section: what lies above a plane across the up axis is cut away (double-sided
+  // faces show the inside).
+  const section = new THREE.Plane();
+  let sectionAt = null;  // in [0, 1] from the model's bottom to its top, or null: none
   const surface = new THREE.Mesh(new THREE.BufferGeometry(), material);
   const wire = new THREE.Mesh(surface.geometry, wireMaterial);
   wire.visible = false;
@@ -69,7 +74,7 @@ export function createScene(host) {
     surface.geometry.dispose();
     surface.geometry = wire.geometry = geometry;
     visibleFaces = null;
-    requestRender();
+    placeSection();
   }
 
   // The colour array (9 floats per face) to fill, then colorsChanged().
@@ -111,6 +116,18 @@ export function createScene(host) {
     requestRender();
   }
 
+  function placeSection() {
+    const clipping = sectionAt === null ? [] : [section];
+    material.clippingPlanes = wireMaterial.clippingPlanes = clipping;
+    if (sectionAt !== null) {
+      surface.geometry.computeBoundingBox();
+      const box = surface.geometry.boundingBox, up = basis()[1];
+      const low = Math.min(up.dot(box.min), up.dot(box.max)), high = Math.max(up.dot(box.min), up.dot(box.max));
+      section.set(up.clone().negate(), low + sectionAt * (high - low));
+    }
+    requestRender();
+  }
+
   // Only these faces are drawn and picked (null: all).
   let visibleFaces = null;
   function setVisibleFaces(faces) {
@@ -141,7 +158,13 @@ export function createScene(host) {
     // 'y' or 'z': which model axis points up; the view is framed again.
     setUp(axis) {
       upAxis = axis;
+      placeSection();
       frame();
+    },
+    // Cuts the model at `at` of its height along the up axis (0 bottom, 1 top), or not (null).
+    setSection(at) {
+      sectionAt = at;
+      placeSection();
     },
     // 'iso', 'front', 'top' or 'side', in the model's up frame.
     view(name) {
