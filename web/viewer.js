@@ -505,7 +505,16 @@ export function createViewer(host, options = {}) {
   });
   runButton.addEventListener('click', () => run());
   cancelButton.addEventListener('click', cancel);
-  glbButton.addEventListener('click', () => download(result.glb, `${baseName()}.vqsa.glb`, 'model/gltf-binary'));
+  // The GLB in the colours on screen: by region (the result's own), or by type (asked of
+  // the worker, which keeps the result).
+  glbButton.addEventListener('click', async () => {
+    try {
+      const bytes = display.colouring === 'type' ? await client.glb('type') : result.glb;
+      download(bytes, `${baseName()}.vqsa.glb`, 'model/gltf-binary');
+    } catch (e) {
+      showError(e.fatal ? 'engine' : 'run', e.message);
+    }
+  });
   reportButton.addEventListener('click', () => download(result.report, `${baseName()}.vqsa.json`, 'application/json'));
   pngButton.addEventListener('click', async () => download(await scene.screenshot(), `${baseName()}.vqsa.png`, 'image/png'));
   const detachDropZone = attachDropZone(options.dropTarget ?? host, host, (file) => load(file).then(runBrought));

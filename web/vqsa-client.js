@@ -43,6 +43,12 @@ export class VqsaClient {
     return this.#request({ type: 'run', options }, [], onProgress);
   }
 
+  // The last result's GLB, its regions coloured each its own ('region') or by quadric type
+  // ('type'); resolves to a Uint8Array.
+  async glb(colours = 'region') {
+    return (await this.#request({ type: 'glb', colours })).glb;
+  }
+
   cancel() {
     this.#worker?.postMessage({ type: 'cancel' });
   }
@@ -90,6 +96,7 @@ export class VqsaClient {
         return;
       case 'loaded':
       case 'result':
+      case 'glb':
         this.#requests.delete(data.id);
         request.resolve(data);
         return;

@@ -1,9 +1,11 @@
 // The module worker that owns the WASM instance. Protocol (every request carries an id):
-//   in:  {type:'load', id, bytes, name} | {type:'example', id, name} | {type:'run', id, options} | {type:'cancel'}
+//   in:  {type:'load', id, bytes, name} | {type:'example', id, name} | {type:'run', id, options}
+//        | {type:'glb', id, colours: 'region' | 'type'} (of the last result) | {type:'cancel'}
 //   out: {type:'loaded', id, info, positions, triangles, sourceFaces}
 //        {type:'progress', id, stage, phase, proxies, iteration, rms, fraction, labels}
 //          (each new stage and operation, else ≤ 25 per second)
-//        {type:'result', id, ...}  {type:'cancelled', id}  {type:'error', id, message, fatal}
+//        {type:'result', id, ..., glb (coloured by region)}  {type:'glb', id, glb}
+//        {type:'cancelled', id}  {type:'error', id, message, fatal}
 import createVqsaModule from './vqsa.mjs';
 
 const PROGRESS_INTERVAL_MS = 40;
@@ -60,7 +62,7 @@ async function run(id, options) {
     }
   }
   const faceLabels = session.faceLabels(), lloydFaceLabels = session.lloydFaceLabels();
-  const projected = session.projected(), vertexErrors = session.vertexErrors(), glb = session.glb();
+  const projected = session.projected(), vertexErrors = session.vertexErrors(), glb = session.glb('region');
   post({
     type: 'result', id,
     progress: session.progress(),
@@ -88,6 +90,10 @@ async function handle(data) {
     if (data.type === 'load') loaded(data.id, session.load(new Uint8Array(data.bytes), data.name));
     else if (data.type === 'example') loaded(data.id, session.loadExample(data.name));
     else if (data.type === 'run') await run(data.id, data.options ?? {});
+    else if (data.type === 'glb') {
+      const glb = session.glb(String(data.colours ?? 'region'));
+      post({ type: 'glb', id: data.id, glb }, [glb.buffer]);
+    }
     else throw new Error(`unknown request '${data.type}'`);
   } catch (e) {
     // A RuntimeError (a trap, memory exhausted mid-way) leaves the instance unusable.

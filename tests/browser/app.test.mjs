@@ -6,7 +6,7 @@ import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { after, before, test } from 'node:test';
-import { root, validateGlb } from '../node/support.mjs';
+import { parseGlb, root, validateGlb } from '../node/support.mjs';
 import { guardNetwork, launchBrowser, startSite } from './support.mjs';
 
 const shots = join(root, 'build', 'screenshots');
@@ -153,6 +153,13 @@ test('views: heat map and types render after a run', async () => {
   assert.match(detail, /region \d+: sphere/);
   // The inspector shows how clear the type choice was.
   assert.match(detail, /type fit RMS [0-9.e+-]+; runner-up [a-z ]+, RMS [0-9.e+-]+/);
+  // The GLB comes in the colours on screen.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-glb"]')]);
+  const gltf = await parseGlb(new Uint8Array(readFileSync(await download.path())));
+  const input = gltf.scene.getObjectByName('input'), colours = input.geometry.getAttribute('color');
+  const type = input.userData.regions[input.geometry.getAttribute('_feature_id_0').getX(0)].type;
+  assert.deepEqual([colours.getX(0), colours.getY(0), colours.getZ(0)].map((c) => c.toFixed(5)),
+    gltf.scene.userData.legend[type].map((c) => c.toFixed(5)));
   await page.screenshot({ path: join(shots, 'app-types.png') });
   await page.close();
 });

@@ -37,7 +37,7 @@ test('every corpus file fails with its message or runs to finite results', async
     const report = JSON.parse(session.report());
     assert.equal(report.proxies.length, want.proxies, name);
     assert.ok(finite(report), `${name}: a non-finite number in the report`);
-    await validateGlb(session.glb().slice(), name);
+    await validateGlb(session.glb('region').slice(), name);
   }
   session.delete();
 });
@@ -74,7 +74,7 @@ test('100 runs in one instance do not grow its memory', () => {
   const run = () => {
     session.loadExample('capsule');
     approximate(session, { proxies: 4 });
-    session.glb();
+    session.glb('region');
     session.labels();
   };
   for (let i = 0; i < 5; ++i) run();  // the allocator settles

@@ -64,3 +64,17 @@ for (const [file, proxies] of [['fandisk.off', 22], ['csg.off', 10]]) {
     assert.ok('empty' in run.legend && 'parallel_planes' in run.legend);
   });
 }
+
+test('--glb-colours type paints each region in its type\'s legend colour; a bad word is a usage error', async () => {
+  const glb = join(work, 'types.glb');
+  runNativeCli([join(meshes, 'csg.off'), '--proxies', '10', '--quiet', '-o', glb, '--glb-colours', 'type']);
+  await validate(glb);
+  const gltf = await readGlb(glb);
+  const input = gltf.scene.getObjectByName('input'), regions = input.userData.regions;
+  const colours = input.geometry.getAttribute('color'), ids = input.geometry.getAttribute('_feature_id_0');
+  for (let v = 0; v < colours.count; v += 5) {
+    const expected = gltf.scene.userData.legend[regions[ids.getX(v)].type];
+    [colours.getX(v), colours.getY(v), colours.getZ(v)].forEach((c, k) => assert.ok(Math.abs(c - expected[k]) < 1e-6));
+  }
+  assert.throws(() => runNativeCli([join(meshes, 'csg.off'), '--quiet', '-o', glb, '--glb-colours', 'pink']), /region.*type/s);
+});

@@ -168,7 +168,10 @@ public:
             return list.dump();
         });
     }
-    val glb() const { return guarded([&] { return bytes_to_js(export_glb(mesh(), result())); }); }
+    // `colours`: "region" or "type".
+    val glb(const std::string& colours) const {
+        return guarded([&] { return bytes_to_js(export_glb(mesh(), result(), glb_colours_from(colours))); });
+    }
     val projected_file(const std::string& name) const {
         return guarded([&] {
             if (result().projected.empty()) throw std::invalid_argument("no projected mesh (projection was off or cancelled)");

@@ -50,12 +50,14 @@ std::string usage() {
            "  --labels FILE.txt     write one proxy id per input face\n"
            "  --projected FILE      write the projected mesh (.obj, .ply or .off)\n"
            "  -o, --output FILE.glb write the result as binary glTF with per-region quadric metadata\n"
+           "  --glb-colours WORD    colour the GLB's regions each its own ('region', default) or by quadric type ('type')\n"
            "  --quiet               no progress lines\n";
     return out.str();
 }
 
 struct Arguments {
     std::string input, report, labels, projected, glb;
+    vqsa::GlbColours glb_colours = vqsa::GlbColours::region;
     vqsa::Options options;
     bool quiet = false;
 };
@@ -80,6 +82,12 @@ Arguments parse(int argc, char** argv) {
             a.projected = value();
         } else if (arg == "-o" || arg == "--output") {
             a.glb = value();
+        } else if (arg == "--glb-colours") {
+            try {
+                a.glb_colours = vqsa::glb_colours_from(value());
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(e.what());
+            }
         } else if (arg == "--quiet") {
             a.quiet = true;
         } else if (arg.rfind("--", 0) == 0) {
@@ -155,7 +163,7 @@ int main(int argc, char** argv) {
         if (const auto& m = result.metrics)
             std::printf("projected surface vs input: rms %.4e, hausdorff %.4e (of the bounding-box diagonal)\n", m->rms,
                         m->hausdorff);
-        if (!args.glb.empty()) write_file(args.glb, vqsa::export_glb(mesh, result));
+        if (!args.glb.empty()) write_file(args.glb, vqsa::export_glb(mesh, result, args.glb_colours));
         if (!args.projected.empty()) {
             if (result.projected.empty()) throw std::runtime_error("no projected mesh (projection was off or cancelled)");
             write_file(args.projected, vqsa::write_mesh(args.projected, result.projected, mesh.triangles));

@@ -204,7 +204,13 @@ nlohmann::json metadata(BufferWriter& writer, const std::vector<nlohmann::json>&
 
 }  // namespace
 
-std::string export_glb(const Mesh& mesh, const Result& result) {
+GlbColours glb_colours_from(const std::string& name) {
+    if (name == "region") return GlbColours::region;
+    if (name == "type") return GlbColours::type;
+    throw std::invalid_argument("GLB colours must be 'region' or 'type', not '" + name + "'");
+}
+
+std::string export_glb(const Mesh& mesh, const Result& result, GlbColours colours) {
     const std::vector<int>& labels = result.face_labels;
     const int regions = static_cast<int>(result.proxies.size());
 
@@ -220,7 +226,7 @@ std::string export_glb(const Mesh& mesh, const Result& result) {
     for (int i = 0; i < regions; ++i) {
         nlohmann::json r = proxy_report(result, i);
         shapes.push_back(result.proxies[i].shape);
-        colors.push_back(region_color(i));
+        colors.push_back(colours == GlbColours::type ? type_color(result.proxies[i].type) : region_color(i));
         r["feature_id"] = i;
         r["color"] = {colors.back().x(), colors.back().y(), colors.back().z()};
         region_data.push_back(r);
