@@ -34,6 +34,8 @@ const DISPLAY_FIELDS = [
   { name: 'view', kind: 'choice', choices: Object.keys(VIEWS), labels: VIEWS },
   { name: 'colouring', label: 'colour', kind: 'choice', choices: ['region', 'type'],
     labels: { region: 'By region', type: 'By quadric type' } },
+  { name: 'heat', label: 'heat scale', kind: 'choice', choices: ['linear', 'log'],
+    labels: { linear: 'linear', log: 'logarithmic (3 decades)' } },
   { name: 'wireframe', kind: 'boolean' },
   { name: 'up', label: 'up axis', kind: 'choice', choices: ['y', 'z'], labels: { y: 'Y up', z: 'Z up' } },
   // 0 is off: the cut's height along the up axis, as a fraction of the model's.
@@ -50,6 +52,7 @@ const MAX_FILE_BYTES = 1.5 * 1024 ** 3;
 // The heat map's red: this quantile of the vertices' errors (the maximum would leave
 // almost every vertex blue).
 const HEAT_QUANTILE = 0.98;
+const HEAT_DECADES = 3;  // the logarithmic heat scale's range below its top
 // The bar over a whole run: the Lloyd stage to 70 %, then the post-processing stages in
 // equal shares, each by its own fraction done.
 const POST_STAGES = ['smooth', 'refit', 'project', 'measure'];
@@ -63,7 +66,7 @@ export function createViewer(host, options = {}) {
   const api = new EventTarget();
   const settings = Object.fromEntries(OPTION_FIELDS.map((f) => [f.name, f.default]));
   for (const f of OPTION_FIELDS) if (options[f.name] !== undefined) settings[f.name] = options[f.name];
-  const display = { view: 'smoothed', colouring: 'region', wireframe: false, up: 'y', section: 0 };
+  const display = { view: 'smoothed', colouring: 'region', heat: 'linear', wireframe: false, up: 'y', section: 0 };
   // A file the user brings runs with the automatic count until a count is chosen (in the
   // panel, or by the embedding page).
   let countChosen = options.proxies !== undefined;
@@ -128,6 +131,7 @@ export function createViewer(host, options = {}) {
   const displayControls = createControls('Display', DISPLAY_FIELDS, display, (name, value) => {
     if (name === 'view') showView();
     else if (name === 'colouring') paint(), fillTable();
+    else if (name === 'heat') paint();
     else if (name === 'up') scene.setUp(value);
     else if (name === 'section') scene.setSection(value > 0 ? value : null);
     else scene.setWireframe(value);
@@ -195,9 +199,9 @@ export function createViewer(host, options = {}) {
     const array = scene.colours(), n = mesh.triangles.length / 3;
     const labels = shownLabels();
     if (showsHeat()) {
-      const errors = result.vertexErrors, t = mesh.triangles, scale = heatScale();
+      const errors = result.vertexErrors, t = mesh.triangles;
       for (let f = 0; f < n; ++f)
-        for (let k = 0; k < 3; ++k) array.set(heat(errors[t[3 * f + k]] / scale), 9 * f + 3 * k);
+        for (let k = 0; k < 3; ++k) array.set(heat(heatPosition(errors[t[3 * f + k]])), 9 * f + 3 * k);
     } else {
       for (let f = 0; f < n; ++f) {
         const c = display.view === 'input' || !labels ? NEUTRAL : faceColour(labels[f]);
@@ -218,6 +222,13 @@ export function createViewer(host, options = {}) {
       heatScaleOf = { result, value: value > 0 ? value : sorted[sorted.length - 1] || 1 };
     }
     return heatScaleOf.value;
+  }
+
+  // Where an error lies on the colour bar, in [0, 1].
+  function heatPosition(error) {
+    const top = heatScale();
+    if (display.heat !== 'log') return error / top;
+    return error > 0 ? 1 + Math.log10(error / top) / HEAT_DECADES : 0;
   }
 
   function showView() {
@@ -247,9 +258,13 @@ export function createViewer(host, options = {}) {
     if (showsHeat()) {
       const ramp = element('div', { className: 'vqsa-ramp' });
       ramp.style.background = `linear-gradient(to right, ${[0, 1 / 3, 2 / 3, 1].map((t) => css(heat(t))).join(',')})`;
+      // Relative to the diagonal, and in the model's own units.
+      const top = heatScale(), diagonal = mesh.info.bboxDiagonal;
+      const bottom = display.heat === 'log' ? `≤ ${format(top / 10 ** HEAT_DECADES, 2)}` : '0';
       legend.append(element('div', { textContent: 'distance to the input / bbox diagonal' }), ramp,
-        element('div', { className: 'vqsa-ramp-labels' }, element('span', { textContent: '0' }),
-          element('span', { textContent: `≥ ${format(heatScale(), 3)}` })));
+        element('div', { className: 'vqsa-ramp-labels' }, element('span', { textContent: bottom }),
+          element('span', { textContent: `≥ ${format(top, 3)}` })),
+        element('div', { className: 'vqsa-ramp-units', textContent: `${format(top, 3)} of the diagonal = ${format(top * diagonal, 3)} model units` }));
       return;
     }
     if (display.colouring !== 'type' || !result) return;

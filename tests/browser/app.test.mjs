@@ -46,6 +46,16 @@ async function openApp() {
   return p;
 }
 
+// A small digest of what the canvas shows: distinct colours on a 32×32 thumbnail.
+const canvasDigest = (p) => p.evaluate(() => {
+  const canvas = document.querySelector('.vqsa-viewer').shadowRoot.querySelector('.vqsa-canvas canvas');
+  const g = document.createElement('canvas');
+  g.width = 32, g.height = 32;
+  const c = g.getContext('2d');
+  c.drawImage(canvas, 0, 0, 32, 32);
+  return Array.from(c.getImageData(0, 0, 32, 32).data).join(',');
+});
+
 async function setProxies(p, n) {
   const input = p.locator('[data-option="proxies"] input[type="number"]');
   await input.fill(String(n));
@@ -89,7 +99,7 @@ test('an idle page draws nothing; a camera move draws', async () => {
     const raf = window.requestAnimationFrame;
     window.requestAnimationFrame = (callback) => (++n, raf(callback));
     if (action) document.querySelector('.vqsa-viewer').shadowRoot.querySelector('.vqsa-canvas canvas').dispatchEvent(new WheelEvent('wheel', { deltaY: 200, bubbles: true }));
-    await new Promise((resolve) => setTimeout(resolve, 1000));
+    await new Promise((resolve) => setTimeout(resolve, action ? 500 : 2000));
     window.requestAnimationFrame = raf;
     return n;
   }, action);
@@ -111,39 +121,44 @@ test('the inspector prints parameters in the units they mean', async () => {
   await page.close();
 });
 
-test('dropping fandisk.off runs to the requested count live; the GLB downloads and validates', async () => {
+test('a dropped 20K-face mesh runs to 20 proxies through the growing counts; the GLB downloads and validates', async () => {
   const page = await openApp();
-  await setProxies(page, 22);
+  await setProxies(page, 20);
   await page.evaluate(() => {
     window.seen = [];
     const viewer = document.querySelector('.vqsa-viewer');
     new MutationObserver(() => viewer.dataset.state === 'running' && window.seen.push(Number(viewer.dataset.proxies)))
       .observe(viewer, { attributes: true, attributeFilter: ['data-proxies'] });
   });
-  await drop(page, 'fandisk.off', { url: '/meshes/fandisk.off' });
+  await drop(page, 'rocker_arm.obj', { url: '/meshes/rocker_arm.obj' });
   await waitFor(page, ['running']);
   await page.screenshot({ path: join(shots, 'app-running.png') });
   await waitFor(page, ['done']);
   const seen = await page.evaluate(() => window.seen);
-  assert.ok(new Set(seen).size >= 4, `proxy counts seen while running: ${seen}`);
-  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '22');
-  await page.screenshot({ path: join(shots, 'app-fandisk.png') });
+  assert.ok(new Set(seen).size >= 4 && Math.min(...seen) <= 5, `proxy counts seen while running: ${seen}`);
+  assert.equal(await page.getAttribute('.vqsa-viewer', 'data-proxies'), '20');
+  await page.screenshot({ path: join(shots, 'app-rocker-arm.png') });
 
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-glb"]')]);
-  assert.match(download.suggestedFilename(), /^fandisk\.vqsa\.glb$/);
+  assert.match(download.suggestedFilename(), /^rocker_arm\.vqsa\.glb$/);
   await validateGlb(new Uint8Array(readFileSync(await download.path())), 'the app\'s GLB');
 
   const [json] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-report"]')]);
   const parsed = JSON.parse(readFileSync(await json.path(), 'utf8'));
-  assert.equal(parsed.proxies.length, 22);
-  assert.equal(parsed.labels.length, 12946);
+  assert.equal(parsed.proxies.length, 20);
+  assert.equal(parsed.labels.length, 20088);
   await page.close();
 });
 
 test('views: heat map and types render after a run', async () => {
   const page = await openApp();
   await page.selectOption('[data-option="view"] select', 'Error heat map');
-  assert.match(await page.textContent('.vqsa-legend'), /distance to the input/);
+  assert.match(await page.textContent('.vqsa-legend'), /distance to the input.*≥ [0-9.e-]+.* of the diagonal = [0-9.e-]+ model units/);
+  const linear = await canvasDigest(page);
+  await page.selectOption('[data-option="heat"] select', 'log');
+  assert.match(await page.textContent('.vqsa-legend'), /≤ [0-9.e-]+/);
+  await page.waitForTimeout(100);
+  assert.notEqual(await canvasDigest(page), linear);
   await page.screenshot({ path: join(shots, 'app-heatmap.png') });
   await page.selectOption('[data-option="view"] select', 'Partition');
   await page.selectOption('[data-option="colouring"] select', 'By quadric type');
@@ -367,15 +382,6 @@ test('a file that fails to load leaves the model, status and downloads as they w
   await fresh.close();
 });
 
-// A small digest of what the canvas shows: distinct colours on a 32×32 thumbnail.
-const canvasDigest = (p) => p.evaluate(() => {
-  const canvas = document.querySelector('.vqsa-viewer').shadowRoot.querySelector('.vqsa-canvas canvas');
-  const g = document.createElement('canvas');
-  g.width = 32, g.height = 32;
-  const c = g.getContext('2d');
-  c.drawImage(canvas, 0, 0, 32, 32);
-  return Array.from(c.getImageData(0, 0, 32, 32).data).join(',');
-});
 
 test('the timeline replays the run: each recorded state, then the result', async () => {
   const page = await openApp();

@@ -64,7 +64,10 @@ export function createControls(title, fields, values, onChange) {
       const v = values[field.name];
       const isOff = switchable && v === off;
       if (!isOff) remembered = v;
-      input.value = String(remembered);
+      // Under 'auto' the field is empty, the count it would take as its placeholder: typing
+      // that very number must still be a change that chooses it.
+      input.value = isOff && field.kind === 'count' ? '' : String(remembered);
+      input.placeholder = String(remembered);
       // A count stays editable under 'auto' (typing one chooses it); a number that is off
       // is not.
       input.disabled = isOff && field.kind !== 'count';
