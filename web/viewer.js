@@ -411,10 +411,19 @@ export function createViewer(host, options = {}) {
     setStatus(p.stage === 'lloyd'
       ? `${p.phase} · ${p.proxies} proxies · iteration ${p.iteration} · RMS ${format(p.rms)}`
       : `${p.stage} ${Math.round(100 * p.fraction)} % · ${p.proxies} proxies`, runFraction(p));
-    paint();
-    drawPlot(plot, history);
+    // Recolouring a large mesh takes longer than the worker takes to post: only the newest
+    // labels are painted, once per frame, and the ones in between are dropped (the
+    // timeline keeps them), so the picture never lags the run.
+    if (!paintQueued) {
+      paintQueued = true;
+      requestAnimationFrame(() => {
+        paintQueued = false;
+        if (live) paint(), drawPlot(plot, history);
+      });
+    }
     api.dispatchEvent(new CustomEvent('progress', { detail: p }));
   }
+  let paintQueued = false;
 
   function summary() {
     const report = result.reportObject, metrics = report.metrics;
