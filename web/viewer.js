@@ -555,6 +555,7 @@ export function createViewer(host, options = {}) {
     get result() { return result?.reportObject ?? null; },
     get settings() { return { ...settings }; },
     destroy() {
+      timeline.clear();
       scene.destroy();
       client.terminate();
       detachDropZone();
