@@ -426,8 +426,11 @@ export function createViewer(host, options = {}) {
   let paintQueued = false;
 
   function summary() {
-    const report = result.reportObject, metrics = report.metrics;
-    return `${result.proxies.length} proxies · RMS ${format(report.rms_error_relative)} of the size` +
+    const report = result.reportObject, metrics = report.metrics, asked = report.options.proxies;
+    // Fewer than asked: say why (the surfaces ran out; the rest would have been slivers).
+    const count = typeof asked === 'number' && result.proxies.length < asked && report.stop_reason === 'fitted'
+      ? `${result.proxies.length} proxies (every surface found before ${asked})` : `${result.proxies.length} proxies`;
+    return `${count} · RMS ${format(report.rms_error_relative)} of the size` +
       (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : '');
   }
 

@@ -319,6 +319,13 @@ test('a dropped CAD mesh runs with the automatic count until a count is chosen',
   await waitFor(fresh, ['done']);
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '2');
   assert.equal(await fresh.isChecked('[data-option="proxies"] input[type="checkbox"]'), false);
+  // More than its three surfaces: three regions, and the status says why.
+  await setProxies(fresh, 6);
+  await fresh.click('button:has-text("Run")');
+  await waitFor(fresh, ['running']);
+  await waitFor(fresh, ['done']);
+  assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '3');
+  assert.match(await fresh.textContent('.vqsa-status'), /^3 proxies \(every surface found before 6\)/);
   assert.deepEqual(consoleErrors, []);
   await fresh.close();
 });

@@ -8,11 +8,12 @@ export function drawPlot(canvas, history, marker = null) {
   g.fillRect(0, 0, w, h);
   g.strokeStyle = '#ccd';
   g.strokeRect(pad, 6, w - pad - 6, h - pad);
-  // The last error seen at each count (a teleport or a split passes through a count more
-  // than once), by count.
-  const last = new Map();
-  for (const [n, rms] of history) if (rms > 0) last.set(n, rms);
-  const points = [...last].sort((a, b) => a[0] - b[0]);
+  // The least error reached at each count, by count: a count is passed through more than
+  // once (splits, merges, teleports), and right after an operation the error has not
+  // settled yet.
+  const least = new Map();
+  for (const [n, rms] of history) if (rms > 0 && !(least.get(n) <= rms)) least.set(n, rms);
+  const points = [...least].sort((a, b) => a[0] - b[0]);
   if (points.length < 2) return;
   const maxN = Math.max(...points.map(([n]) => n)), logs = points.map(([, r]) => Math.log10(r));
   const lo = Math.floor(Math.min(...logs)), hi = Math.ceil(Math.max(...logs)) + (Math.min(...logs) === Math.max(...logs) ? 1 : 0);
