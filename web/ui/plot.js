@@ -3,10 +3,13 @@
 // `marker`: a [count, rms] to circle (the timeline's state), or null.
 export function drawPlot(canvas, history, marker = null) {
   const g = canvas.getContext('2d'), w = canvas.width, h = canvas.height, pad = 26;
+  // The theme's colours (viewer.css), light or dark.
+  const style = getComputedStyle(canvas), colour = (name, fallback) => style.getPropertyValue(name).trim() || fallback;
+  const ink = colour('--vqsa-plot-ink', '#556'), frame = colour('--vqsa-plot-frame', '#ccd');
   g.clearRect(0, 0, w, h);
-  g.fillStyle = '#fff';
+  g.fillStyle = colour('--vqsa-plot-background', '#fff');
   g.fillRect(0, 0, w, h);
-  g.strokeStyle = '#ccd';
+  g.strokeStyle = frame;
   g.strokeRect(pad, 6, w - pad - 6, h - pad);
   // The least error reached at each count, by count: a count is passed through more than
   // once (splits, merges, teleports), and right after an operation the error has not
@@ -19,12 +22,12 @@ export function drawPlot(canvas, history, marker = null) {
   const lo = Math.floor(Math.min(...logs)), hi = Math.ceil(Math.max(...logs)) + (Math.min(...logs) === Math.max(...logs) ? 1 : 0);
   const x = (n) => pad + ((n - 1) / Math.max(1, maxN - 1)) * (w - pad - 8);
   const y = (r) => 6 + ((hi - Math.log10(r)) / (hi - lo)) * (h - pad - 2);
-  g.fillStyle = '#556';
+  g.fillStyle = ink;
   g.font = '10px sans-serif';
   for (let e = lo; e <= hi; ++e) g.fillText(`1e${e}`, 0, y(10 ** e) + 3);
   g.fillText('proxies', w / 2 - 15, h - 4);
   g.fillText(String(maxN), w - 22, h - 14);
-  g.strokeStyle = '#2864c8';
+  g.strokeStyle = colour('--vqsa-accent', '#2864c8');
   g.lineWidth = 1.5;
   g.beginPath();
   points.forEach(([n, r], i) => (i ? g.lineTo(x(n), y(r)) : g.moveTo(x(n), y(r))));
