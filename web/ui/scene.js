@@ -154,7 +154,7 @@ export function createScene(host) {
 
   return {
     canvas: renderer.domElement,
-    setGeometry, colours, coloursChanged, frame, pick, requestRender, setVisibleFaces,
+    setGeometry, colours, coloursChanged, frame, pick, setVisibleFaces,
     // 'y' or 'z': which model axis points up; the view is framed again.
     setUp(axis) {
       upAxis = axis;
