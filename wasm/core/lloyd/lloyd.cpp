@@ -786,10 +786,22 @@ bool Lloyd::merge_same_surface() {
     return false;
 }
 
+bool Lloyd::lies_on(int region, double error) const {
+    // Within a quarter of its own fit's error, or within the tolerance a chart gets against
+    // its own fit (chart_factor² times its noise).
+    const Proxy& p = proxies_[region];
+    return error <= 1.25 * p.error + 1e-12 * p.area ||
+           error <= options_.chart_factor * options_.chart_factor * region_noise_[region];
+}
+
+double Lloyd::facing(const Quadric& q, int face) const {
+    const Vec3 n = q.gradient(model_.barycentres[face]);
+    return n.norm() > 0 ? model_.areas[face] * features_.normals[face].dot(n.normalized()) : 0.0;
+}
+
 bool Lloyd::one_surface(const Quadric& q, int a, int b) const {
-    // Each part judged alone, so that a small region's misfit does not hide in a large
-    // region's noise: within a quarter of its own fit's error, or within the tolerance a
-    // chart gets against its own fit (chart_factor² times its noise).
+    // Each part judged alone (lies_on), so that a small region's misfit does not hide in a
+    // large region's noise.
     FaceErrors evaluator;
     evaluator.reset(model_, {q});
     double error[2] = {0, 0};
@@ -797,28 +809,22 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b) const {
         const int k = labels_[f] == a ? 0 : labels_[f] == b ? 1 : -1;
         if (k >= 0) error[k] += evaluator(f, 0);
     }
-    for (int k = 0; k < 2; ++k) {
-        const int r = k == 0 ? a : b;
-        const double tolerance = options_.chart_factor * options_.chart_factor * region_noise_[r];
-        if (!(error[k] <= 1.25 * proxies_[r].error + 1e-12 * proxies_[r].area || error[k] <= tolerance)) return false;
-    }
+    if (!lies_on(a, error[0]) || !lies_on(b, error[1])) return false;
     return !bends_through_creases(q, a, b) && !faces_both_ways(q, a, b) && !strays(q, a) && !strays(q, b);
 }
 
 bool Lloyd::faces_both_ways(const Quadric& q, int a, int b) const {
     // The mean of each region's face normals along q's gradient: +1 or -1 when the region
     // faces one way. A plate's two faces fit one plane, facing away from each other.
-    double facing[2] = {0, 0}, area[2] = {0, 0};
+    double along[2] = {0, 0}, area[2] = {0, 0};
     for (int f = 0; f < model_.face_count(); ++f) {
         const int k = labels_[f] == a ? 0 : labels_[f] == b ? 1 : -1;
-        if (k < 0) continue;
-        const Vec3 n = q.gradient(model_.barycentres[f]);
-        if (!(n.norm() > 0)) continue;
-        facing[k] += model_.areas[f] * features_.normals[f].dot(n.normalized());
+        if (k < 0 || !(q.gradient(model_.barycentres[f]).norm() > 0)) continue;
+        along[k] += facing(q, f);
         area[k] += model_.areas[f];
     }
     if (!(area[0] > 0 && area[1] > 0)) return false;
-    return facing[0] * facing[1] < -0.25 * area[0] * area[1];
+    return along[0] * along[1] < -0.25 * area[0] * area[1];
 }
 
 bool Lloyd::off_normal(const Quadric& q, int face) const {
@@ -886,23 +892,16 @@ bool Lloyd::merge_sliver() {
         for (int n : neighbours) {
             const Quadric& q = proxies_[n].quadric;
             evaluator.reset(model_, {q});
-            double error = 0, facing = 0, beside = 0;
+            double error = 0, own = 0, beside = 0;
             bool on_surface = true;
             for (int f : faces[s]) {
                 error += evaluator(f, 0);
                 on_surface = on_surface && !off_normal(q, f);
-                const Vec3 normal = q.gradient(model_.barycentres[f]);
-                if (normal.norm() > 0) facing += model_.areas[f] * features_.normals[f].dot(normal.normalized());
-                for (int e = g.begin(f); e < g.end(f); ++e) {
-                    const int h = g.neighbor[e];
-                    const Vec3 other = q.gradient(model_.barycentres[h]);
-                    if (labels_[h] == n && other.norm() > 0) beside += model_.areas[h] * features_.normals[h].dot(other.normalized());
-                }
+                own += facing(q, f);
+                for (int e = g.begin(f); e < g.end(f); ++e)
+                    if (labels_[g.neighbor[e]] == n) beside += facing(q, g.neighbor[e]);
             }
-            const Proxy& p = proxies_[s];
-            const double tolerance = std::max(1.25 * p.error + 1e-12 * p.area,
-                                              options_.chart_factor * options_.chart_factor * region_noise_[s]);
-            if (!on_surface || !(error <= tolerance) || !(facing * beside > 0) || error >= best) continue;
+            if (!on_surface || !lies_on(s, error) || !(own * beside > 0) || error >= best) continue;
             best = error, sliver = s, into = n;
         }
     }

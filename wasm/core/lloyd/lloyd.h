@@ -223,6 +223,11 @@ private:
     bool merge_sliver();
     // Whether q explains regions a and b as one surface (see merge_same_surface).
     bool one_surface(const Quadric& q, int a, int b) const;
+    // Whether `error`, the region's error against another quadric, says it lies on that
+    // quadric's surface as well as on its own.
+    bool lies_on(int region, double error) const;
+    // A face's area times the cosine between its normal and q's gradient (0 where q has none).
+    double facing(const Quadric& q, int face) const;
     // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
     bool faces_both_ways(const Quadric& q, int a, int b) const;
     // Whether a face's (filtered) normal is off q's gradient by more than the crease angle.
