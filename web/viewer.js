@@ -144,7 +144,7 @@ export function createViewer(host, options = {}) {
   const scene = createScene(canvasHost);
 
   // ---- state -------------------------------------------------------------------------
-  let client = new VqsaClient();
+  const client = new VqsaClient();
   let mesh = null;            // {positions, triangles, sourceFaces, info, name}
   let live = null;            // labels during a run
   let result = null;          // the last result
@@ -203,8 +203,10 @@ export function createViewer(host, options = {}) {
       for (let f = 0; f < n; ++f)
         for (let k = 0; k < 3; ++k) array.set(heat(heatPosition(errors[t[3 * f + k]])), 9 * f + 3 * k);
     } else {
+      // One colour per region, not one per face (a hover repaints every face).
+      const byRegion = [];
       for (let f = 0; f < n; ++f) {
-        const c = display.view === 'input' || !labels ? NEUTRAL : faceColour(labels[f]);
+        const c = display.view === 'input' || !labels ? NEUTRAL : (byRegion[labels[f] + 1] ??= faceColour(labels[f]));
         array.set(c, 9 * f);
         array.set(c, 9 * f + 3);
         array.set(c, 9 * f + 6);
