@@ -10,12 +10,18 @@
 //
 // The viewer lives in the element's shadow root (its styles stay inside). The element
 // carries data-state (idle | loading | running | done | error) and data-proxies; events:
-// state, loaded, progress, result, error (detail: {type: 'load' | 'run' | 'engine', message}).
+// state, loaded, progress, result, edit (detail: {edits, history: {canUndo, canRedo}}), error (detail:
+// {type: 'load' | 'run' | 'edit' | 'engine', message}).
+//
+// Edits of the result (docs/EDITS.md; faces in the file's order, as the report's labels):
+//   await viewer.split(3); await viewer.merge(2, 5); await viewer.setType(1, 'cone');
+//   await viewer.lock(4); await viewer.addSeed(812); await viewer.undo(); await viewer.redo();
 import { NEUTRAL, css, heat, regionColour, typeColour } from './ui/colours.js';
 import { createControls } from './ui/controls.js';
 import { element } from './ui/dom.js';
 import { attachDropZone } from './ui/drop-zone.js';
-import { format, typeName } from './ui/format.js';
+import { createEditBar } from './ui/edit-bar.js';
+import { describeEdit, format, typeName } from './ui/format.js';
 import { createInspector } from './ui/inspector.js';
 import { drawPlot } from './ui/plot.js';
 import { createScene } from './ui/scene.js';
@@ -124,6 +130,9 @@ export function createViewer(host, options = {}) {
       const labels = shownLabels();
       scene.frame(labels ? (f) => labels[f] === region : null);
     },
+    merge: (region) => {
+      if (pinned && region !== focused && result && !result.proxies[focused]?.locked) act('merge', focused, region);
+    },
   });
   const approximation = createControls('Approximation', OPTION_FIELDS, settings, (name) => {
     if (name === 'proxies') countChosen = true;
@@ -136,10 +145,14 @@ export function createViewer(host, options = {}) {
     else if (name === 'section') scene.setSection(value > 0 ? value : null);
     else scene.setWireframe(value);
   });
+  const editBar = createEditBar((kind, ...args) => act(kind, ...args));
+  const editList = element('ol', { className: 'vqsa-edit-list', dataset: { testid: 'edits' } });
   const side = element('div', { className: 'vqsa-side' }, approximation.element, displayControls.element,
     element('div', { className: 'vqsa-caption', textContent: 'RMS error against proxy count' }), plot,
     element('div', { className: 'vqsa-caption', textContent: 'Proxies' }),
-    element('div', { className: 'vqsa-table-host' }, inspector.table), inspector.detail);
+    element('div', { className: 'vqsa-table-host' }, inspector.table),
+    element('div', { className: 'vqsa-caption', textContent: 'Edit the pinned region' }), editBar.element, inspector.detail,
+    element('div', { className: 'vqsa-caption', textContent: 'Edits' }), editList);
   shadow.replaceChildren(stylesheet, toolbar, element('div', { className: 'vqsa-body' }, stage, side));
   const scene = createScene(canvasHost);
 
@@ -161,6 +174,7 @@ export function createViewer(host, options = {}) {
     glbButton.disabled = reportButton.disabled = !(result && (state === 'done' || state === 'error'));
     pngButton.disabled = !mesh || state === 'loading';
     host.classList.toggle('vqsa-empty', !mesh);
+    updateEditBar();
     api.dispatchEvent(new CustomEvent('state', { detail: state }));
   }
 
@@ -289,25 +303,101 @@ export function createViewer(host, options = {}) {
     if (focused === region && !pin) return;
     focused = region;
     inspector.show(result?.proxies?.[region]);
+    updateEditBar();
     paint();
   }
 
-  function regionAt(event) {
+  // The face under the pointer (-1: none, or nothing to pick).
+  function faceAt(event) {
     if (!result || live || scrubbed || !mesh) return -1;
-    const face = scene.pick(event);
-    return face < 0 ? -1 : shownLabels()[face];
+    return scene.pick(event);
   }
-  let pointerDown = null;
+  let pointerDown = null, hovered = -1;
   scene.canvas.addEventListener('pointerdown', (e) => { pointerDown = [e.clientX, e.clientY]; });
   scene.canvas.addEventListener('pointerup', (e) => {
-    if (pointerDown && Math.hypot(e.clientX - pointerDown[0], e.clientY - pointerDown[1]) < 4) focus(regionAt(e), true);
+    if (!pointerDown || Math.hypot(e.clientX - pointerDown[0], e.clientY - pointerDown[1]) >= 4) return;
+    const face = faceAt(e), region = face < 0 ? -1 : shownLabels()[face];
+    if (editBar.picked(face, region)) return;
+    if (e.shiftKey && pinned && region >= 0 && region !== focused && !result.proxies[focused]?.locked) act('merge', focused, region);
+    else focus(region, true);
   });
   scene.canvas.addEventListener('pointermove', (e) => {
-    if (e.buttons === 0 && result && !live) focus(regionAt(e));
+    if (e.buttons !== 0 || !result || live) return;
+    const face = faceAt(e);
+    hovered = face < 0 ? -1 : shownLabels()[face];
+    focus(hovered);
   });
+  scene.canvas.addEventListener('pointerleave', () => { hovered = -1; });
+  host.addEventListener('keydown', (e) => {
+    if (e.defaultPrevented || e.composedPath()[0]?.closest?.('input, select, textarea')) return;
+    if (editBar.key(e, hovered)) e.preventDefault();
+  });
+
+  // ---- edits ---------------------------------------------------------------------------
+  // The edit bar follows the region pinned in the view or the inspector.
+  function updateEditBar() {
+    const editable = Boolean(result) && host.dataset.state === 'done' && !scrubbed;
+    editBar.update(pinned ? result?.proxies?.[focused] ?? null : null, result?.history, editable);
+  }
+
+  // What the edit bar (or a key, or a shift-click) asked for; faces are the view's
+  // triangles, the engine's are the file's.
+  function act(kind, ...args) {
+    const fileFace = (face) => mesh.sourceFaces[face];
+    if (kind === 'pick') scene.canvas.style.cursor = args[0] ? 'crosshair' : '';
+    else if (kind === 'split') split(args[0], args[1] === undefined ? undefined : fileFace(args[1]));
+    else if (kind === 'merge') merge(args[0], args[1]);
+    else if (kind === 'type') setType(args[0], args[1]);
+    else if (kind === 'lock') (args[1] ? lock : unlock)(args[0]);
+    else if (kind === 'seed') addSeed(fileFace(args[0]));
+    else if (kind === 'undo') undo();
+    else if (kind === 'redo') redo();
+  }
+
+  // Runs an edit (or an undo or redo) in the worker and shows its result; `pin`: the region
+  // to keep in focus after it (from the new result).
+  function editing(request, pin) {
+    return guarded('edit', async (current) => {
+      if (!result) throw new Error('run an approximation first');
+      const onRow = shadow.activeElement?.matches('tr');  // keys go on from the pinned row
+      clearError();
+      setState('running');
+      const done = await request((p) => {
+        if (!current()) return;
+        setStatus(p.stage === 'lloyd' ? `${p.phase} · iteration ${p.iteration}` : `${p.stage} ${Math.round(100 * p.fraction)} %`,
+          runFraction(p));
+      });
+      if (!current()) return null;
+      showResult(done, { edited: true });
+      const region = pin?.(done);
+      focused = -1, pinned = false;
+      if (region !== undefined && region >= 0 && region < done.proxies.length) focus(region, true);
+      if (onRow && pinned) inspector.focusRow(focused);
+      updateEditBar();
+      const edits = result.reportObject.edits;
+      api.dispatchEvent(new CustomEvent('edit', { detail: { edits, history: done.history } }));
+      return result.reportObject;
+    });
+  }
+  const edit = (op, pin) => editing((onProgress) => client.edit(op, { onProgress }), pin);
+  const split = (region, face) => edit({ op: 'split', region, ...(face === undefined ? {} : { face }) }, (r) => r.proxies.length - 1);
+  const merge = (a, b) => edit({ op: 'merge', regions: [a, b] }, () => (a > b ? a - 1 : a));
+  const setType = (region, type) => edit({ op: 'set_type', region, type }, () => region);
+  const lock = (region) => edit({ op: 'lock', region }, () => region);
+  const unlock = (region) => edit({ op: 'unlock', region }, () => region);
+  const addSeed = (face) => edit({ op: 'add_seed', face }, (r) => r.proxies.length - 1);
+  const undo = () => editing(() => client.undo());
+  const redo = () => editing(() => client.redo());
+
+  function showEdits() {
+    const edits = result?.reportObject?.edits ?? [];
+    editList.replaceChildren(...edits.map((e) => element('li', { textContent: describeEdit(e) })));
+    if (!edits.length) editList.append(element('li', { className: 'vqsa-none', textContent: 'none: pick a region to edit it' }));
+  }
 
   function forgetResult() {
     result = null;
+    showEdits();
     history = [];
     scrubbed = null;
     timeline.clear();
@@ -432,21 +522,26 @@ export function createViewer(host, options = {}) {
     // Fewer than asked: say why (the surfaces ran out; the rest would have been slivers).
     const count = typeof asked === 'number' && result.proxies.length < asked && report.stop_reason === 'fitted'
       ? `${result.proxies.length} proxies (every surface found before ${asked})` : `${result.proxies.length} proxies`;
+    const edits = report.edits.length ? ` · ${report.edits.length} edit${report.edits.length > 1 ? 's' : ''}` : '';
     return `${count} · RMS ${format(report.rms_error_relative)} of the size` +
-      (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : '');
+      (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : '') + edits;
   }
 
-  function showResult(done) {
+  // A run's result, or an edited one (`edited`: the run's timeline and plot stay).
+  function showResult(done, { edited = false } = {}) {
     live = null;
     result = done;
     result.reportObject = JSON.parse(done.report);
     host.dataset.proxies = String(done.proxies.length);
     setStatus(summary(), 1);
-    history.push([done.proxies.length, result.reportObject.rms_error_relative]);
-    timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms: result.reportObject.rms_error_relative });
-    timeline.finish();
-    drawPlot(plot, history);
+    if (!edited) {
+      history.push([done.proxies.length, result.reportObject.rms_error_relative]);
+      timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms: result.reportObject.rms_error_relative });
+      timeline.finish();
+      drawPlot(plot, history);
+    }
     fillTable();
+    showEdits();
     showView();
     setState('done');
     api.dispatchEvent(new CustomEvent('result', { detail: result.reportObject }));
@@ -462,6 +557,7 @@ export function createViewer(host, options = {}) {
       setStatus(summary(), 1);
     }
     host.dataset.frame = frame ? String(timeline.frames.indexOf(frame)) : '';
+    updateEditBar();
     showView();
     applyVisibility();
     drawPlot(plot, history, frame ? [frame.proxies, frame.rms] : null);
@@ -550,12 +646,13 @@ export function createViewer(host, options = {}) {
 
   drawPlot(plot, history);
   fillTable();
+  showEdits();
   setState('idle');
 
   // Accessors stay accessors (Object.assign would copy their values once).
   Object.defineProperties(api, Object.getOwnPropertyDescriptors({
     element: host,
-    load, loadExample, run, cancel,
+    load, loadExample, run, cancel, split, merge, setType, lock, unlock, addSeed, undo, redo,
     get state() { return host.dataset.state; },
     get result() { return result?.reportObject ?? null; },
     get settings() { return { ...settings }; },

@@ -5,11 +5,13 @@
 //   const mesh = await client.load(file);               // File, Blob, ArrayBuffer or Uint8Array (+ name)
 //   const result = await client.run({ proxies: 20 }, { onProgress: (p) => draw(p.labels) });
 //   client.cancel();                                     // the pending run() rejects with an AbortError
+//   const edited = await client.edit({ op: 'split', region: 3 });  // docs/EDITS.md; undo(), redo()
 //
 // load() resolves to {info, positions: Float32Array, triangles: Uint32Array, sourceFaces};
 // progress events carry {stage, phase, proxies, iteration, rms, fraction, labels: Int32Array
 // per triangle}; run() resolves to {report (JSON text), proxies, faceLabels, lloydFaceLabels,
-// projected, vertexErrors, glb: Uint8Array, progress}. Options: the option schema's camelCase
+// projected, vertexErrors, glb: Uint8Array, progress, history: {canUndo, canRedo}}, and so do
+// edit(), undo() and redo(). Options: the option schema's camelCase
 // names (vqsa-schema.js, as the CLI's flags). Errors carry `fatal` when the engine itself
 // failed (it restarts).
 // `fatal`: the engine itself failed (and restarts), not the request.
@@ -41,6 +43,19 @@ export class VqsaClient {
 
   run(options = {}, { onProgress } = {}) {
     return this.#request({ type: 'run', options }, [], onProgress);
+  }
+
+  // Edits the last result (an object as docs/EDITS.md describes) and resolves to the new one.
+  edit(edit, { onProgress } = {}) {
+    return this.#request({ type: 'edit', edit }, [], onProgress);
+  }
+
+  undo() {
+    return this.#request({ type: 'undo' });
+  }
+
+  redo() {
+    return this.#request({ type: 'redo' });
   }
 
   // The last result's GLB, its regions coloured each its own ('region') or by quadric type

@@ -7,12 +7,16 @@
 // property under its camelCase name (element.maxIterations = 50 sets the attribute).
 // The element loads its mesh when attached and runs again when an option changes (changes
 // made together run once). It fires the viewer's events: state, loaded, progress, result,
-// and error with detail {type: 'load' | 'run' | 'engine', message}; `.viewer` is the
-// viewer's module API. Its parts live in its shadow root, styles included.
+// edit, and error with detail {type: 'load' | 'run' | 'edit' | 'engine', message}; `.viewer`
+// is the viewer's module API. Edits of the result are methods, each a promise of the new
+// report (docs/EDITS.md): split(id, face?), merge(a, b), setType(id, type), lock(id),
+// unlock(id), addSeed(face), undo(), redo(). Its parts live in its shadow root, styles
+// included.
 import { createViewer } from './viewer.js';
 import { options as schema } from './vqsa-schema.js';
 
-const EVENTS = ['state', 'loaded', 'progress', 'result', 'error'];
+const EVENTS = ['state', 'loaded', 'progress', 'result', 'edit', 'error'];
+const EDITS = ['split', 'merge', 'setType', 'lock', 'unlock', 'addSeed', 'undo', 'redo'];
 
 // An attribute's text as the option's value (the core checks the ranges).
 function parse(option, text) {
@@ -88,6 +92,13 @@ for (const o of schema)
     },
     set(value) {
       this.setAttribute(o.name, String(value));
+    },
+  });
+for (const name of EDITS)
+  Object.defineProperty(VqsaViewerElement.prototype, name, {
+    value(...args) {
+      if (!this.viewer) return Promise.reject(new Error('the element is not in a document'));
+      return this.viewer[name](...args);
     },
   });
 for (const name of ['src', 'example'])

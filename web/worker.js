@@ -1,10 +1,12 @@
 // The module worker that owns the WASM instance. Protocol (every request carries an id):
 //   in:  {type:'load', id, bytes, name} | {type:'example', id, name} | {type:'run', id, options}
+//        | {type:'edit', id, edit} (docs/EDITS.md) | {type:'undo', id} | {type:'redo', id}
 //        | {type:'glb', id, colours: 'region' | 'type'} (of the last result) | {type:'cancel'}
 //   out: {type:'loaded', id, info, positions, triangles, sourceFaces}
 //        {type:'progress', id, stage, phase, proxies, iteration, rms, fraction, labels}
 //          (each new stage and operation, else ≤ 25 per second)
-//        {type:'result', id, ..., glb (coloured by region)}  {type:'glb', id, glb}
+//        {type:'result', id, ..., history: {canUndo, canRedo}, glb (coloured by region)}
+//          (after a run, an edit, an undo or a redo)  {type:'glb', id, glb}
 //        {type:'cancelled', id}  {type:'error', id, message, fatal}
 import createVqsaModule from './vqsa.mjs';
 
@@ -37,8 +39,8 @@ function progress(id) {
   return p;
 }
 
-async function run(id, options) {
-  session.start(options);
+// Steps the run or edit the session has started to its end, then posts the result.
+async function drive(id) {
   cancelRequested = false;
   let lastPost = 0, lastPhase = '', lastStage = '';
   for (let more = true; more;) {
@@ -61,6 +63,10 @@ async function run(id, options) {
       return;
     }
   }
+  postResult(id);
+}
+
+function postResult(id) {
   const faceLabels = session.faceLabels(), lloydFaceLabels = session.lloydFaceLabels();
   const projected = session.projected(), vertexErrors = session.vertexErrors(), glb = session.glb('region');
   post({
@@ -68,6 +74,7 @@ async function run(id, options) {
     progress: session.progress(),
     report: session.report(),
     proxies: JSON.parse(session.proxies()),
+    history: session.history(),
     faceLabels, lloydFaceLabels, projected, vertexErrors, glb,
   }, [faceLabels.buffer, lloydFaceLabels.buffer, projected.buffer, vertexErrors.buffer, glb.buffer]);
 }
@@ -89,7 +96,16 @@ async function handle(data) {
     session ??= new vqsa.Session();
     if (data.type === 'load') loaded(data.id, session.load(new Uint8Array(data.bytes), data.name));
     else if (data.type === 'example') loaded(data.id, session.loadExample(data.name));
-    else if (data.type === 'run') await run(data.id, data.options ?? {});
+    else if (data.type === 'run') {
+      session.start(data.options ?? {});
+      await drive(data.id);
+    } else if (data.type === 'edit') {
+      session.edit(JSON.stringify(data.edit ?? {}));
+      await drive(data.id);
+    } else if (data.type === 'undo' || data.type === 'redo') {
+      if (!session[data.type]()) throw new Error(`nothing to ${data.type}`);
+      postResult(data.id);
+    }
     else if (data.type === 'glb') {
       const glb = session.glb(String(data.colours ?? 'region'));
       post({ type: 'glb', id: data.id, glb }, [glb.buffer]);

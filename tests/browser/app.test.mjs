@@ -489,3 +489,93 @@ test('a section plane cuts the model along the up axis', async () => {
   assert.equal(await canvasDigest(page), whole);
   await page.close();
 });
+
+test('edits by clicks and keys: split, merge, retype, undo; the GLB carries the history', async () => {
+  const page = await openApp();
+  const proxies = () => page.evaluate(() => Number(document.querySelector('.vqsa-viewer').dataset.proxies));
+  const edits = () => page.locator('[data-testid="edits"] li:not(.vqsa-none)').allTextContents();
+  // Waits for the result of the edit that leaves `count` edits.
+  const settled = (count) => page.waitForFunction((k) => {
+    const v = document.querySelector('.vqsa-viewer');
+    return v.dataset.state === 'done' && v.shadowRoot.querySelectorAll('[data-testid="edits"] li:not(.vqsa-none)').length === k;
+  }, count, { timeout: 60000 });
+  const rows = page.locator('.vqsa-table tr[data-region]');
+  const n = await proxies();
+
+  await rows.nth(0).click();  // pins region 0; S splits it at its worst face
+  await page.keyboard.press('s');
+  await settled(1);
+  assert.equal(await proxies(), n + 1);
+  assert.equal(await rows.count(), n + 1);
+  assert.deepEqual(await edits(), ['split region 0']);
+  assert.match(await page.textContent('.vqsa-detail'), new RegExp(`^region ${n}:`));  // the new region in focus
+
+  await rows.nth(0).click({ modifiers: ['Shift'] });  // merges region 0 into the pinned new one
+  await settled(2);
+  assert.equal(await proxies(), n);
+  assert.deepEqual(await edits(), ['split region 0', `merge region 0 into ${n}`]);
+
+  const pinned = Number((await page.textContent('.vqsa-detail')).match(/^region (\d+):/)[1]);
+  await page.selectOption('[data-testid="edit-type"]', 'quadric');
+  await settled(3);
+  assert.match(await page.textContent('.vqsa-detail'), new RegExp(`^region ${pinned}: .*\\(imposed\\)`));
+  assert.match(await rows.nth(pinned).textContent(), /\(imposed\)/);
+
+  await page.click('[data-testid="edit-undo"]');
+  await settled(2);
+  assert.doesNotMatch(await page.locator('.vqsa-table').textContent(), /imposed/);
+  await rows.nth(1).click();
+  await page.keyboard.press('Control+z');  // undoes the merge
+  await settled(1);
+  assert.equal(await proxies(), n + 1);
+  assert.deepEqual(await edits(), ['split region 0']);
+  assert.equal(await page.isDisabled('[data-testid="edit-redo"]'), false);
+
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-glb"]')]);
+  const bytes = new Uint8Array(readFileSync(await download.path()));
+  await validateGlb(bytes, 'edited GLB');
+  const gltf = await parseGlb(bytes);
+  assert.deepEqual(gltf.scene.userData.edits, [{ op: 'split', region: 0 }]);
+  assert.equal(gltf.scene.getObjectByName('input').userData.regions.length, n + 1);
+  await page.screenshot({ path: join(shots, 'app-edited.png') });
+  await page.close();
+});
+
+test('<vqsa-viewer>: edit methods, the edit event, edit errors', async () => {
+  const embed = await openPage('embed.html');
+  await waitFor(embed, ['done']);
+  const outcome = await embed.evaluate(async () => {
+    const element = document.querySelector('vqsa-viewer');
+    const events = [];
+    element.addEventListener('edit', (e) => events.push(e.detail));
+    const count = () => element.viewer.result.proxies.length;
+    const out = { start: count() };
+    out.split = (await element.split(0)).proxies.length;
+    out.merged = (await element.merge(0, out.start)).proxies.length;
+    out.typed = (await element.setType(0, 'plane')).proxies[0].imposed_type;
+    out.locked = (await element.lock(0)).proxies[0].locked;
+    const errors = [];
+    element.addEventListener('error', (e) => errors.push(e.detail), { once: true });
+    out.lockedSplit = await element.split(0);  // null: the error event says why
+    out.error = errors[0];
+    out.seeded = (await element.addSeed(element.viewer.result.labels.findIndex((l) => l === 1))).proxies.length;
+    out.undone = (await element.undo()).edits.length;
+    out.redone = (await element.redo()).edits.length;
+    out.events = events.map((e) => [e.edits.length, e.history.canUndo, e.history.canRedo]);
+    return out;
+  });
+  const n = outcome.start;
+  assert.equal(outcome.split, n + 1);
+  assert.equal(outcome.merged, n);
+  assert.equal(outcome.typed, 'plane');
+  assert.equal(outcome.locked, true);
+  assert.equal(outcome.lockedSplit, null);
+  assert.equal(outcome.error.type, 'edit');
+  assert.match(outcome.error.message, /region 0 is locked/);
+  assert.equal(outcome.seeded, n + 1);
+  assert.equal(outcome.undone, 4);
+  assert.equal(outcome.redone, 5);
+  assert.deepEqual(outcome.events, [[1, true, false], [2, true, false], [3, true, false], [4, true, false],
+    [5, true, false], [4, true, true], [5, true, false]]);
+  await embed.close();
+});

@@ -2,7 +2,7 @@
 // as JS Errors, and a module that stays usable after them.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { test } from 'node:test';
@@ -50,6 +50,39 @@ for (const [input, proxies] of [['fandisk.off', 22], ['example:capsule', 3]]) {
     assertSameResult(wasm, native);
   });
 }
+
+test('edits: WASM gives the native build\'s labels; undo and redo step through the results', () => {
+  const edits = [{ op: 'merge', regions: [0, 4] }, { op: 'split', region: 0 }, { op: 'lock', region: 2 },
+    { op: 'set_type', region: 3, type: 'quadric' }, { op: 'add_seed', face: 100 }];
+  const file = join(work, 'edits.json'), plain = join(work, 'plain.json'), json = join(work, 'edited.json');
+  writeFileSync(file, JSON.stringify(edits));
+  runNativeCli(['example:box_boss_hole', '--quiet', '--report', plain]);
+  runNativeCli(['example:box_boss_hole', '--quiet', '--edits', file, '--report', json]);
+  const native = JSON.parse(readFileSync(json, 'utf8'));
+  assert.deepEqual(native.edits, edits);
+  assert.equal(native.proxies[2].locked, true);
+  assert.equal(native.proxies[3].imposed_type, 'quadric');
+
+  const session = new vqsa.Session();
+  session.loadExample('box_boss_hole');
+  wasmRun(session, {});
+  for (const e of edits) {
+    session.edit(JSON.stringify(e));
+    while (session.stepFor(100)) {}
+  }
+  const wasm = JSON.parse(session.report());
+  assertSameResult(wasm, native);
+  assert.deepEqual(wasm.edits, edits);
+  assert.throws(() => session.edit(JSON.stringify({ op: 'split', region: 2 })), /region 2 is locked/);
+  assert.throws(() => session.edit('{"op": "merge"}'), /merge needs "regions"/);
+  for (let i = 0; i < edits.length; ++i) assert.equal(session.undo(), true);
+  assert.equal(session.undo(), false);
+  assert.deepEqual(session.history(), { canUndo: false, canRedo: true });
+  assert.deepEqual(JSON.parse(session.report()).labels, JSON.parse(readFileSync(plain, 'utf8')).labels);
+  for (let i = 0; i < edits.length; ++i) assert.equal(session.redo(), true);
+  assert.deepEqual(JSON.parse(session.report()).labels, native.labels);
+  session.delete();
+});
 
 test('bad input rejects with the C++ message and the session stays usable', () => {
   const session = new vqsa.Session();

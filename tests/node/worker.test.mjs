@@ -28,3 +28,42 @@ test('a cancel is acknowledged within 100 ms in every stage', async (t) => {
     worker.terminate();
   }
 });
+
+test('edits through the worker: results with their history, errors that keep the result, a cancelled edit undone', async () => {
+  const worker = startWorker();
+  try {
+    await worker.request({ type: 'example', name: 'flange:100000' });
+    const run = await worker.request({ type: 'run', options: { proxies: 7 } });
+    const merged = await worker.request({ type: 'edit', edit: { op: 'merge', regions: [0, 1] } });
+    assert.equal(merged.type, 'result', merged.message);
+    assert.equal(merged.proxies.length, 6);
+    assert.deepEqual(merged.history, { canUndo: true, canRedo: false });
+    assert.deepEqual(JSON.parse(merged.report).edits, [{ op: 'merge', regions: [0, 1] }]);
+
+    const bad = await worker.request({ type: 'edit', edit: { op: 'merge', regions: [2, 2] } });
+    assert.equal(bad.type, 'error');
+    assert.match(bad.message, /two different regions/);
+    assert.equal(bad.fatal, false);
+
+    // Cancelled at its first progress event, an edit leaves the merged result.
+    let sent = null;
+    worker.onProgress = () => {
+      if (sent === null) sent = performance.now(), worker.cancel();
+    };
+    const cancelled = await worker.request({ type: 'edit', edit: { op: 'split', region: 0 } });
+    const latency = performance.now() - sent;
+    worker.onProgress = null;
+    assert.equal(cancelled.type, 'cancelled');
+    assert.ok(latency <= 100, `cancel took ${latency.toFixed(0)} ms`);
+
+    const undone = await worker.request({ type: 'undo' });
+    assert.deepEqual(undone.faceLabels, run.faceLabels);
+    assert.deepEqual(undone.history, { canUndo: false, canRedo: true });
+    const redone = await worker.request({ type: 'redo' });
+    assert.deepEqual(redone.faceLabels, merged.faceLabels);
+    const nothing = await worker.request({ type: 'redo' });
+    assert.match(nothing.message, /nothing to redo/);
+  } finally {
+    worker.terminate();
+  }
+});

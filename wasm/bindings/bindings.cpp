@@ -99,6 +99,33 @@ public:
         });
     }
 
+    // Starts an edit of the finished result, `edit` as JSON text (docs/EDITS.md); stepFor
+    // carries it out like a run, cancel drops it.
+    void edit(const std::string& edit) {
+        guarded([&] {
+            nlohmann::json object;
+            try {
+                object = nlohmann::json::parse(edit);
+            } catch (const nlohmann::json::exception&) {
+                throw std::invalid_argument("an edit must be a JSON object");
+            }
+            pipeline().edit(edit_from_json(object));
+            result_.reset();
+            return 0;
+        });
+    }
+    // Back to the result before the last edit (forward again); false when there is none.
+    bool undo() { return guarded([&] { return history_step(pipeline().undo()); }); }
+    bool redo() { return guarded([&] { return history_step(pipeline().redo()); }); }
+    val history() const {
+        return guarded([&] {
+            val out = val::object();
+            out.set("canUndo", pipeline().can_undo());
+            out.set("canRedo", pipeline().can_redo());
+            return out;
+        });
+    }
+
     void cancel() {
         guarded([&] {
             pipeline().cancel();
@@ -180,6 +207,10 @@ public:
     }
 
 private:
+    bool history_step(bool moved) {
+        if (moved) result_.reset();
+        return moved;
+    }
     val set_mesh(Mesh mesh, double started) {
         pipeline_.reset();
         result_.reset();
@@ -229,6 +260,10 @@ EMSCRIPTEN_BINDINGS(vqsa) {
         .function("start", &Session::start)
         .function("stepFor", &Session::step_for)
         .function("cancel", &Session::cancel)
+        .function("edit", &Session::edit)
+        .function("undo", &Session::undo)
+        .function("redo", &Session::redo)
+        .function("history", &Session::history)
         .function("progress", &Session::progress)
         .function("faceLabels", &Session::face_labels)
         .function("lloydFaceLabels", &Session::lloyd_face_labels)

@@ -49,6 +49,7 @@ std::string usage() {
     out << "  --report FILE.json    write the JSON report\n"
            "  --labels FILE.txt     write one proxy id per input face\n"
            "  --projected FILE      write the projected mesh (.obj, .ply or .off)\n"
+           "  --edits FILE.json     apply these edits after the run (docs/EDITS.md; a report's \"edits\" too)\n"
            "  -o, --output FILE.glb write the result as binary glTF with per-region quadric metadata\n"
            "  --glb-colours WORD    colour the GLB's regions each its own ('region', default) or by quadric type ('type')\n"
            "  --quiet               no progress lines\n";
@@ -56,7 +57,7 @@ std::string usage() {
 }
 
 struct Arguments {
-    std::string input, report, labels, projected, glb;
+    std::string input, report, labels, projected, glb, edits;
     vqsa::GlbColours glb_colours = vqsa::GlbColours::region;
     vqsa::Options options;
     bool quiet = false;
@@ -80,6 +81,8 @@ Arguments parse(int argc, char** argv) {
             a.labels = value();
         } else if (arg == "--projected") {
             a.projected = value();
+        } else if (arg == "--edits") {
+            a.edits = value();
         } else if (arg == "-o" || arg == "--output") {
             a.glb = value();
         } else if (arg == "--glb-colours") {
@@ -116,6 +119,18 @@ Arguments parse(int argc, char** argv) {
     return a;
 }
 
+std::vector<vqsa::Edit> read_edits(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot read the file");
+    try {
+        return vqsa::edits_from_json(nlohmann::json::parse(in));
+    } catch (const nlohmann::json::exception&) {
+        throw std::runtime_error(path + ": not JSON");
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
+}
+
 void write_file(const std::string& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
     out << text;
@@ -138,15 +153,26 @@ int main(int argc, char** argv) {
         const vqsa::Mesh mesh = args.input.rfind(example, 0) == 0 ? vqsa::example_mesh(args.input.substr(example.size()))
                                                                  : vqsa::read_mesh_file(args.input);
         const double load = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const std::vector<vqsa::Edit> edits = args.edits.empty() ? std::vector<vqsa::Edit>{} : read_edits(args.edits);
         vqsa::Pipeline pipeline(mesh, args.options);
         std::string last_phase;
-        pipeline.run([&](const vqsa::Progress& p) {
+        const auto progress = [&](const vqsa::Progress& p) {
             const std::string phase = p.phase;
             if (!args.quiet && phase != "lloyd" && phase != "smooth" && phase != last_phase)
                 std::fprintf(stderr, "%-10s proxies %4d  iteration %5d  rms %.3e\n", p.phase, p.proxies, p.iterations, p.rms);
             last_phase = phase;
             return true;
-        });
+        };
+        pipeline.run(progress);
+        for (std::size_t i = 0; i < edits.size(); ++i) {
+            try {
+                pipeline.edit(edits[i]);
+            } catch (const std::invalid_argument& e) {
+                throw std::runtime_error(args.edits + ": edit " + std::to_string(i) + " (" + vqsa::edit_to_json(edits[i]).dump() +
+                                         "): " + e.what());
+            }
+            pipeline.run(progress);
+        }
         const vqsa::Result result = pipeline.result(load);
         if (!args.report.empty()) write_file(args.report, vqsa::make_report(result).dump(1) + "\n");
         if (!args.labels.empty()) {
@@ -160,6 +186,8 @@ int main(int argc, char** argv) {
         std::printf("rms error %.4e (%.4e of the longest side), load %.3f s, Lloyd %.3f s, post-processing %.3f s\n",
                     result.rms_error, result.rms_error_relative, result.timing.load, result.timing.lloyd,
                     result.timing.postprocess);
+        for (std::size_t i = 0; i < result.edits.size(); ++i)
+            std::printf("edit %zu %s: %.3f s\n", i, vqsa::edit_to_json(result.edits[i]).dump().c_str(), result.timing.edits[i]);
         if (const auto& m = result.metrics)
             std::printf("projected surface vs input: rms %.4e, hausdorff %.4e (of the bounding-box diagonal)\n", m->rms,
                         m->hausdorff);
@@ -169,7 +197,8 @@ int main(int argc, char** argv) {
             write_file(args.projected, vqsa::write_mesh(args.projected, result.projected, mesh.triangles));
         }
         for (const vqsa::ProxyResult& p : result.proxies)
-            std::printf("  %3d %-24s faces %6d  rms %.3e\n", p.id, vqsa::type_name(p.type), p.faces, p.rms_error);
+            std::printf("  %3d %-24s faces %6d  rms %.3e%s\n", p.id, vqsa::type_name(p.type), p.faces, p.rms_error,
+                        p.locked ? "  locked" : "");
         return 0;
     } catch (const std::exception& e) {
         std::cerr << "vqsa: " << e.what() << "\n";

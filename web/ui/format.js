@@ -47,3 +47,16 @@ export function parameterLines(proxy) {
   return Object.entries(proxy.params ?? {}).map(([k, v]) => `${k.replaceAll('_', ' ')}: ${k === 'half_angle' ? degrees(v)
     : Array.isArray(v[0]) ? v.map((row) => vector(row)).join(' ') : Array.isArray(v) ? vector(v) : format(v)}`);
 }
+
+// One edit of the report's list, in words.
+export function describeEdit(e) {
+  switch (e.op) {
+    case 'split': return `split region ${e.region}` + (e.face === undefined ? '' : ` at face ${e.face}`);
+    case 'merge': return `merge region ${e.regions[1]} into ${e.regions[0]}`;
+    case 'set_type': return e.type === 'none' ? `region ${e.region}: type as fitted` : `region ${e.region}: ${typeName(e.type)} imposed`;
+    case 'lock': return `lock region ${e.region}`;
+    case 'unlock': return `unlock region ${e.region}`;
+    case 'add_seed': return `new region at face ${e.face}`;
+    default: return JSON.stringify(e);
+  }
+}

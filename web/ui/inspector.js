@@ -3,15 +3,19 @@
 // to copy.
 //
 // Keyboard: rows are focusable; ↑/↓ move, Enter or Space pins the region, H hides or shows
-// it, I isolates it (again: shows all), F frames it, Escape unpins.
+// it, I isolates it (again: shows all), F frames it, Escape unpins; other keys go on to the
+// viewer (the edit keys). Shift-click merges a row's region into the pinned one.
 import { element } from './dom.js';
 import { css } from './colours.js';
 import { format, keyParameters, parameterLines, polynomial, typeName } from './format.js';
 
+// The type, and what edits hold of it.
+const typeLabel = (p) => typeName(p.type) + (p.imposed_type ? ' (imposed)' : '') + (p.locked ? ' · locked' : '');
+
 // Callbacks: focus(region, pinned) when a row is entered (pinned false), clicked or keyed
 // (pinned true; region -1 unpins); visibility(hiddenSet) when regions are hidden or shown;
-// frame(region).
-export function createInspector({ focus, visibility, frame }) {
+// frame(region); merge(region) when a row is shift-clicked (into the pinned one).
+export function createInspector({ focus, visibility, frame, merge }) {
   const table = element('table', { className: 'vqsa-table' });
   const detail = element('div', { className: 'vqsa-detail' });
   let proxies = null;
@@ -65,11 +69,11 @@ export function createInspector({ focus, visibility, frame }) {
       shown.addEventListener('click', (e) => e.stopPropagation());
       shown.addEventListener('change', () => toggle(p.id));
       const row = element('tr', { tabIndex: 0, dataset: { region: p.id } },
-        element('td', {}, shown), element('td', {}, swatch, String(p.id)), element('td', { textContent: typeName(p.type) }),
+        element('td', {}, shown), element('td', {}, swatch, String(p.id)), element('td', { textContent: typeLabel(p) }),
         element('td', { textContent: keyParameters(p) }), element('td', { textContent: ((100 * p.area) / total).toFixed(1) }),
         element('td', { textContent: format(p.metrics?.rms ?? p.rms_error) }));
       row.addEventListener('mouseenter', () => focus(p.id, false));
-      row.addEventListener('click', () => focus(p.id, true));
+      row.addEventListener('click', (e) => (e.shiftKey ? merge(p.id) : focus(p.id, true)));
       row.addEventListener('dblclick', () => isolate(p.id));
       row.addEventListener('keydown', (e) => onKey(e, p.id));
       table.append(row);
@@ -83,7 +87,7 @@ export function createInspector({ focus, visibility, frame }) {
     if (proxy) rowOf(proxy.id)?.scrollIntoView({ block: 'nearest' });
     detail.replaceChildren();
     if (!proxy) return;
-    const lines = [`region ${proxy.id}: ${typeName(proxy.type)}${proxy.special_fit ? ' (refitted)' : ''}`,
+    const lines = [`region ${proxy.id}: ${typeLabel(proxy)}${proxy.special_fit ? ' (refitted)' : ''}`,
       `${proxy.faces} faces, RMS ${format(proxy.metrics?.rms ?? 0)} of the diagonal`,
       // How clear the type choice was: the chosen type's fit to the region's vertices
       // against the best fit of another type.
@@ -105,5 +109,5 @@ export function createInspector({ focus, visibility, frame }) {
     detail.append(...lines.map((l) => element('div', { textContent: l })), actions);
   }
 
-  return { table, detail, fill, show, get hidden() { return hidden; } };
+  return { table, detail, fill, show, focusRow: (region) => rowOf(region)?.focus(), get hidden() { return hidden; } };
 }

@@ -53,7 +53,9 @@ nlohmann::json proxy_report(const Result& result, int i) {
                           {"type_rms", p.type_rms},
                           {"runner_up", p.runner_up ? nlohmann::json{{"type", type_name(p.runner_up->type)}, {"rms", p.runner_up->rms}}
                                                     : nlohmann::json()},
-                          {"params", params_report(p.shape)}};
+                          {"params", params_report(p.shape)},
+                          {"locked", p.locked},
+                          {"imposed_type", p.imposed == ImposedType::none ? nlohmann::json() : nlohmann::json(imposed_type_name(p.imposed))}};
     if (const auto& m = result.metrics)
         out["metrics"] = {{"rms", m->region_rms.at(i)}, {"hausdorff", m->region_hausdorff.at(i)}};
     return out;
@@ -75,6 +77,8 @@ nlohmann::json run_report(const Result& result) {
                           {"iterations", result.iterations},
                           {"rms_error", result.rms_error},
                           {"rms_error_relative", result.rms_error_relative}};
+    run["edits"] = nlohmann::json::array();
+    for (const Edit& e : result.edits) run["edits"].push_back(edit_to_json(e));
     if (const auto& m = result.metrics)
         run["metrics"] = {{"rms", m->rms},
                           {"hausdorff", m->hausdorff},
@@ -90,7 +94,7 @@ nlohmann::json make_report(const Result& result) {
     const Timing& t = result.timing;
     report["timing_s"] = {{"load", t.load},       {"lloyd", t.lloyd},     {"postprocess", t.postprocess},
                           {"smooth", t.smooth},   {"refit", t.refit},     {"project", t.project},
-                          {"measure", t.measure}, {"total", t.total}};
+                          {"measure", t.measure}, {"total", t.total},     {"edits", t.edits}};
     report["proxies"] = proxies;
     report["labels"] = result.labels;
     report["labels_lloyd"] = result.lloyd_labels;

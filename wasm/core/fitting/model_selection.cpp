@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace vqsa {
@@ -27,7 +28,44 @@ bool on_two_parts(const Classification& c, const Samples& s, double margin) {
     return parts.both(s.total_weight);
 }
 
+// Whether a candidate is of the imposed type.
+bool of_type(const TypedFit& c, ImposedType type) {
+    switch (type) {
+        case ImposedType::none: return true;
+        case ImposedType::plane: return c.special && c.type == QuadricType::plane;
+        case ImposedType::sphere: return c.special && c.type == QuadricType::sphere;
+        case ImposedType::cylinder: return c.special && c.type == QuadricType::cylinder;
+        case ImposedType::cone: return c.special && c.type == QuadricType::cone;
+        case ImposedType::quadric: return !c.special;
+    }
+    return false;
+}
+
+constexpr ImposedType kImposedTypes[] = {ImposedType::none, ImposedType::plane, ImposedType::sphere,
+                                         ImposedType::cylinder, ImposedType::cone, ImposedType::quadric};
+
 }  // namespace
+
+const char* imposed_type_name(ImposedType type) {
+    switch (type) {
+        case ImposedType::none: return "none";
+        case ImposedType::plane: return "plane";
+        case ImposedType::sphere: return "sphere";
+        case ImposedType::cylinder: return "cylinder";
+        case ImposedType::cone: return "cone";
+        case ImposedType::quadric: return "quadric";
+    }
+    return "unknown";
+}
+
+ImposedType imposed_type_from(const std::string& name) {
+    std::string names;
+    for (ImposedType t : kImposedTypes) {
+        if (name == imposed_type_name(t)) return t;
+        names += std::string(names.empty() ? "" : ", ") + imposed_type_name(t);
+    }
+    throw std::invalid_argument("unknown type '" + name + "' (one of " + names + ")");
+}
 
 ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSelectionOptions& options) {
     std::vector<TypedFit> candidates;
@@ -51,7 +89,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
                               degrees_of_freedom(fit->shape.type), true});
     };
     add_special(fit_plane_geometric(s));
-    if (s.points.size() >= 6 && !general.is_plane()) {
+    if (s.points.size() >= 6 && (!general.is_plane() || options.imposed != ImposedType::none)) {
         add_special(fit_sphere_geometric(s));
         // Axis guesses from the general quadric: the eigenvector of A with the smallest
         // |eigenvalue| (cylinder), the one whose eigenvalue's sign stands alone (cone),
@@ -94,6 +132,11 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     const double floor2 = (options.floor * radius) * (options.floor * radius);
     for (TypedFit& c : candidates) c.bic = n * std::log(c.rms * c.rms + floor2) + c.parameters * std::log(n);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
+    const auto chosen = std::find_if(candidates.begin(), candidates.end(),
+                                     [&](const TypedFit& c) { return of_type(c, options.imposed); });
+    if (chosen == candidates.end())
+        throw std::invalid_argument(std::string("no ") + imposed_type_name(options.imposed) + " fits these vertices");
+    std::rotate(candidates.begin(), chosen, chosen + 1);
     ModelChoice choice{candidates.front(), std::nullopt};
     for (std::size_t i = 1; i < candidates.size() && !choice.runner_up; ++i)
         if (candidates[i].type != choice.chosen.type) choice.runner_up = candidates[i];

@@ -8,6 +8,7 @@
 #include "fitting/samples.h"
 
 #include <optional>
+#include <string>
 
 namespace vqsa {
 
@@ -28,11 +29,20 @@ struct ModelChoice {
     std::optional<TypedFit> runner_up;  // the best candidate of another type
 };
 
+// A type imposed on a region by hand (an edit): one of the geometric fits, or the general
+// quadric whatever its affine type. `none` lets the data choose.
+enum class ImposedType { none, plane, sphere, cylinder, cone, quadric };
+const char* imposed_type_name(ImposedType type);
+// Throws std::invalid_argument listing the names when `name` is none of them.
+ImposedType imposed_type_from(const std::string& name);
+
 struct ModelSelectionOptions {
     // Mean squared distances below (floor × region radius)² count as zero: every type
     // that contains the surface fits a clean tessellation's vertices to rounding.
     double floor = 1e-9;
     ClassifyOptions classify;
+    // The candidate of this type wins whatever the criterion says (if its fit exists).
+    ImposedType imposed = ImposedType::none;
 };
 
 // `vertices`: each vertex of the region once (the vertices of a CAD tessellation lie on
@@ -40,7 +50,9 @@ struct ModelSelectionOptions {
 // sphere (4), circular cylinder (5), circular cone (6), elliptic paraboloid (8) and the
 // general quadric with its affine type (its degrees of freedom, 6 to 9) — unless it has two parts with vertices on
 // both, or is a pair of planes (one of them is the plane candidate). The chosen one
-// minimises n ln(MSE + floor²) + k ln(n), n the number of vertices.
+// minimises n ln(MSE + floor²) + k ln(n), n the number of vertices. With a type imposed,
+// the best candidate of that type is chosen; std::invalid_argument when none could be
+// fitted (a sphere through a flat region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
 
 }  // namespace vqsa

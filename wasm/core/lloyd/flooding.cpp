@@ -67,8 +67,10 @@ void Flooding::run(const Model& model, FaceErrors& errors, const std::vector<int
         }
     };
 
-    for (std::size_t p = 0; p < seeds.size(); ++p) labels[seeds[p]] = static_cast<int>(p);
-    for (std::size_t p = 0; p < seeds.size(); ++p) queue_neighbours(seeds[p], static_cast<int>(p));
+    for (std::size_t p = 0; p < seeds.size(); ++p)
+        if (seeds[p] >= 0) labels[seeds[p]] = static_cast<int>(p);
+    for (std::size_t p = 0; p < seeds.size(); ++p)
+        if (seeds[p] >= 0) queue_neighbours(seeds[p], static_cast<int>(p));
     while (!heap_.empty()) {
         const Entry e = pop();
         const int face = static_cast<int>(e.key & 0xffffffffu);

@@ -18,7 +18,8 @@ class Flooding {
 public:
     // `labels`: faces with a label ≥ 0 are fixed and block the flood; the others must
     // be -1 and get the label of a seed that reaches them (or stay -1 if none does).
-    // Seed faces must be unlabelled; seed i gets label i.
+    // Seed faces must be unlabelled; seed i gets label i. A seed of -1 grows nothing (a
+    // region held fixed in `labels`).
     // `crease`: per dual-graph link, or null for none.
     void run(const Model& model, FaceErrors& errors, const std::vector<int>& seeds, std::vector<int>& labels,
              const std::vector<char>* crease = nullptr);

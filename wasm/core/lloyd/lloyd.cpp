@@ -719,7 +719,7 @@ bool Lloyd::split_invalid() {
     }
     if (chosen < 0) return false;
     // Each part restarts from a plane through its best face.
-    proxies_[chosen].quadric = plane_through(chosen_parts.best[0]);
+    proxies_[chosen].quadric = plane_through(model_, chosen_parts.best[0]);
     proxies_[chosen].fitted = false;
     evaluate();
     proxies_[chosen].seed = chosen_parts.best[0];
@@ -967,11 +967,11 @@ void Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
     evaluate();
 }
 
-Quadric Lloyd::plane_through(int face) const {
-    const Triangle& t = model_.triangles[face];
+Quadric plane_through(const Model& model, int face) {
+    const Triangle& t = model.triangles[face];
     const Vec3 normal =
-        (model_.points[t[1]] - model_.points[t[0]]).cross(model_.points[t[2]] - model_.points[t[0]]).normalized();
-    return normalized(Quadric::plane(normal, model_.barycentres[face]));
+        (model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]).normalized();
+    return normalized(Quadric::plane(normal, model.barycentres[face]));
 }
 
 bool Lloyd::is_seed(int face) const {
@@ -982,7 +982,7 @@ bool Lloyd::is_seed(int face) const {
 
 void Lloyd::add_proxy(int seed) {
     Proxy p;
-    p.quadric = plane_through(seed);
+    p.quadric = plane_through(model_, seed);
     p.seed = seed;
     proxies_.push_back(p);
     region_noise_.push_back(0);

@@ -111,6 +111,9 @@ double evaluate_regions(const Model& model, const std::vector<int>& labels, std:
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr,
                         const std::vector<int>* chart = nullptr);
 
+// The plane of a face (a new proxy's quadric before its first fit).
+Quadric plane_through(const Model& model, int face);
+
 std::vector<Quadric> quadrics_of(const std::vector<Proxy>& proxies);
 std::vector<int> seeds_of(const std::vector<Proxy>& proxies);
 
@@ -241,7 +244,6 @@ private:
     // noise does not explain: merged away and reinserted there.
     bool repair_stuck();
     void merge_pair(int keep, int gone, const Fit& fit);
-    Quadric plane_through(int face) const;
     void add_proxy(int seed);  // a plane through the seed face
     bool is_seed(int face) const;
     void remove_proxy(int index);

@@ -1,7 +1,9 @@
 #include "pipeline/pipeline.h"
 
+#include "edit/apply_edit.h"
 #include "fitting/model_selection.h"
 #include "fitting/special_fit.h"
+#include "lloyd/local_lloyd.h"
 #include "lloyd/lloyd.h"
 #include "post/graph_cut.h"
 #include "post/project.h"
@@ -46,7 +48,6 @@ public:
         : model_(model), options_(options), state_(state) {}
     Stage id() const override { return Stage::lloyd; }
     double fraction() const override { return lloyd_ ? lloyd_->fraction() : 0; }
-    const std::vector<int>& labels() const { return lloyd_ ? lloyd_->labels() : state_.labels; }
     const Lloyd* lloyd() const { return lloyd_.get(); }
     void cancel() {
         if (lloyd_) lloyd_->cancel();
@@ -77,11 +78,45 @@ private:
     std::unique_ptr<Lloyd> lloyd_;
 };
 
-// Graph-cut smoothing, one boundary per step; then every region is refitted.
+// An edit's Lloyd: iterations on the regions it touched and their neighbours, one per step.
+class EditLloydStage : public PipelineStage {
+public:
+    EditLloydStage(const Model& model, const Options& options, State& state, std::vector<char> regions, const char* phase)
+        : model_(model), options_(options), state_(state), regions_(std::move(regions)), phase_(phase) {}
+    Stage id() const override { return Stage::lloyd; }
+    double fraction() const override { return local_ ? local_->fraction() : 0; }
+
+    bool step() override {
+        state_.phase = phase_;
+        if (!local_) {
+            local_ = std::make_unique<LocalLloyd>(model_, options_.lloyd, state_.labels, state_.proxies, regions_,
+                                                  state_.imposed, state_.crease.empty() ? nullptr : &state_.crease);
+            state_.energy = local_->energy();
+            return true;
+        }
+        const bool more = local_->step();
+        state_.energy = local_->energy();
+        if (more) return true;
+        state_.lloyd_labels = state_.labels;
+        local_.reset();
+        return false;
+    }
+
+private:
+    const Model& model_;
+    const Options& options_;
+    State& state_;
+    std::vector<char> regions_;
+    const char* phase_;
+    std::unique_ptr<LocalLloyd> local_;
+};
+
+// Graph-cut smoothing, one boundary per step; then every region is refitted. With
+// `regions` (an edit's), only boundaries between two of them, and only they are refitted.
 class SmoothStage : public PipelineStage {
 public:
-    SmoothStage(const Model& model, const Options& options, State& state)
-        : model_(model), options_(options), state_(state) {}
+    SmoothStage(const Model& model, const Options& options, State& state, std::vector<char> regions)
+        : model_(model), options_(options), state_(state), regions_(std::move(regions)) {}
     Stage id() const override { return Stage::smooth; }
     double fraction() const override {
         return smoother_ && smoother_->pair_count() > 0 ? double(smoother_->pairs_done()) / smoother_->pair_count() : 0;
@@ -92,14 +127,15 @@ public:
         if (!smoother_)
             smoother_ = std::make_unique<BoundarySmoother>(model_, quadrics_of(state_.proxies), state_.labels,
                                                            seeds_of(state_.proxies), options_.smoothing,
-                                                           state_.crease.empty() ? nullptr : &state_.crease);
+                                                           state_.crease.empty() ? nullptr : &state_.crease,
+                                                           regions_.empty() ? nullptr : &regions_);
         if (smoother_->step()) return true;
         smoother_.reset();
         // Straighter boundaries are worth a little distance, not a worse fit: when the
         // regions refitted to their new faces lie farther from them by more than a tenth,
         // the Lloyd boundaries stay.
         const std::vector<Proxy> before = state_.proxies;
-        refit_regions(model_, state_.labels, options_.lloyd, state_.proxies);
+        refit_regions(model_, state_.labels, options_.lloyd, state_.proxies, regions_);
         FaceErrors evaluator;
         std::vector<double> errors;
         const double energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
@@ -116,15 +152,17 @@ private:
     const Model& model_;
     const Options& options_;
     State& state_;
+    std::vector<char> regions_;
     std::unique_ptr<BoundarySmoother> smoother_;
 };
 
-// Each region's type by model selection over its vertices, one region per step; then
-// the tangent seams, one region per step.
+// Each region's type by model selection over its vertices (the imposed one, if any), one
+// region per step; then the tangent seams, one region per step. With `regions` (an edit's),
+// only those.
 class RefitStage : public PipelineStage {
 public:
-    RefitStage(const Model& model, const Options& options, State& state)
-        : model_(model), options_(options), state_(state) {
+    RefitStage(const Model& model, const Options& options, State& state, std::vector<char> regions)
+        : model_(model), options_(options), state_(state), regions_(std::move(regions)) {
         // One selection for every region and for the seams between them.
         seams_.selection.classify = options.lloyd.classify;
         seams_.fit = options.lloyd.fit;
@@ -138,26 +176,44 @@ public:
     bool step() override {
         state_.phase = "refit";
         const int count = static_cast<int>(state_.proxies.size());
+        auto refitted = [&](int r) { return regions_.empty() || regions_[r]; };
+        auto imposed = [&](int r) { return r < static_cast<int>(state_.imposed.size()) ? state_.imposed[r] : ImposedType::none; };
         if (!started_) {
             started_ = true;
-            state_.choices.clear();
-            if (!options_.refit) return false;
+            if (!options_.refit) {
+                state_.choices.clear();
+                return false;
+            }
+            if (regions_.empty()) state_.choices.clear();
             state_.choices.resize(count);
             region_faces_.assign(count, {});
-            for (int f = 0; f < model_.face_count(); ++f) region_faces_[state_.labels[f]].push_back(f);
+            for (int f = 0; f < model_.face_count(); ++f)
+                if (refitted(state_.labels[f])) region_faces_[state_.labels[f]].push_back(f);
         }
+        while (next_ < count && !refitted(next_)) ++next_;
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            state_.choices[next_] =
-                select_model(vertex_samples(model_.points, model_.triangles, region_faces_[next_]), p.quadric, seams_.selection);
+            const Samples vertices = vertex_samples(model_.points, model_.triangles, region_faces_[next_]);
+            ModelSelectionOptions selection = seams_.selection;
+            selection.imposed = imposed(next_);
+            try {
+                state_.choices[next_] = select_model(vertices, p.quadric, selection);
+            } catch (const std::invalid_argument&) {  // the imposed type no longer fits: the data choose
+                state_.choices[next_] = select_model(vertices, p.quadric, seams_.selection);
+            }
             p.quadric = state_.choices[next_].chosen.quadric;
             region_faces_[next_] = {};
             ++next_;
             return true;
         }
-        if (!simplifier_)
+        if (!simplifier_) {
+            // Regions with a type imposed keep their faces: the seams serve the data's choices.
+            may_change_.assign(count, 1);
+            for (int r = 0; r < count; ++r) may_change_[r] = refitted(r) && imposed(r) == ImposedType::none;
             simplifier_ = std::make_unique<SeamSimplifier>(model_, state_.labels, state_.proxies, state_.choices,
-                                                           state_.crease.empty() ? nullptr : &state_.crease, seams_);
+                                                           state_.crease.empty() ? nullptr : &state_.crease, seams_,
+                                                           &may_change_);
+        }
         if (simplifier_->step()) return true;
         simplifier_.reset();
         FaceErrors evaluator;
@@ -170,7 +226,9 @@ private:
     const Model& model_;
     const Options& options_;
     State& state_;
+    std::vector<char> regions_;
     SeamOptions seams_;
+    std::vector<char> may_change_;
     std::vector<std::vector<int>> region_faces_;
     std::unique_ptr<SeamSimplifier> simplifier_;
     bool started_ = false;
@@ -253,12 +311,58 @@ Pipeline::Pipeline(const Mesh& mesh, std::shared_ptr<const Model> shared, const 
     input_ = {mesh.input_vertex_count,      mesh.input_face_count,    static_cast<int>(mesh.triangles.size()),
               model().component_count,       bounding_box(mesh).diagonal(), model().frame.scale};
     stages_.push_back(std::make_unique<LloydStage>(model(), options_.lloyd, state_));
-    if (options_.smooth) stages_.push_back(std::make_unique<SmoothStage>(model(), options_, state_));
-    stages_.push_back(std::make_unique<RefitStage>(model(), options_, state_));
+    add_stages({});
+}
+
+void Pipeline::add_stages(const std::vector<char>& regions) {
+    if (options_.smooth) stages_.push_back(std::make_unique<SmoothStage>(model(), options_, state_, regions));
+    stages_.push_back(std::make_unique<RefitStage>(model(), options_, state_, regions));
     if (options_.project) {
         stages_.push_back(std::make_unique<ProjectStage>(model(), options_, state_));
         if (options_.measure) stages_.push_back(std::make_unique<MeasureStage>(model(), options_, state_));
     }
+}
+
+void Pipeline::edit(const Edit& edit) {
+    if (!done() || editing_) throw std::invalid_argument("an edit needs a finished run");
+    Edit in_model = edit;
+    if (edit.face >= 0) {
+        const auto kept = std::find(source_face_.begin(), source_face_.end(), edit.face);
+        if (edit.face >= input_.faces) throw std::invalid_argument("face " + std::to_string(edit.face) + " does not exist");
+        if (kept == source_face_.end())
+            throw std::invalid_argument("face " + std::to_string(edit.face) + " was dropped (zero area)");
+        in_model.face = static_cast<int>(kept - source_face_.begin());
+    }
+    State before = state_;
+    const std::vector<char> regions = apply_edit(model(), options_.lloyd, in_model, state_);
+    undo_.push_back(std::move(before));
+    if (undo_.size() > kMaxUndo) undo_.erase(undo_.begin());
+    redo_.clear();
+    state_.edits.push_back(edit);
+    state_.edit_seconds.push_back(0);
+    stages_.clear();
+    current_ = 0;
+    cancel_requested_ = false;
+    if (regions.empty()) return;  // lock, unlock: nothing moves
+    editing_ = true;
+    stages_.push_back(std::make_unique<EditLloydStage>(model(), options_, state_, regions, edit_kind_name(edit.kind)));
+    add_stages(regions);
+}
+
+bool Pipeline::undo() {
+    if (!can_undo()) return false;
+    redo_.push_back(std::move(state_));
+    state_ = std::move(undo_.back());
+    undo_.pop_back();
+    return true;
+}
+
+bool Pipeline::redo() {
+    if (!can_redo()) return false;
+    undo_.push_back(std::move(state_));
+    state_ = std::move(redo_.back());
+    redo_.pop_back();
+    return true;
 }
 
 Pipeline::~Pipeline() = default;
@@ -266,17 +370,26 @@ Pipeline::~Pipeline() = default;
 Stage Pipeline::stage() const { return current_ < stages_.size() ? stages_[current_]->id() : Stage::done; }
 
 const Lloyd* Pipeline::running_lloyd() const {
-    return current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).lloyd() : nullptr;
+    return current_ == 0 && !editing_ && !stages_.empty() ? static_cast<const LloydStage&>(*stages_[0]).lloyd() : nullptr;
 }
 
 const std::vector<int>& Pipeline::face_labels() const {
-    return current_ == 0 ? static_cast<const LloydStage&>(*stages_[0]).labels() : state_.labels;
+    return running_lloyd() ? running_lloyd()->labels() : state_.labels;
 }
 
 bool Pipeline::step() {
     if (done()) return false;
     const auto start = std::chrono::steady_clock::now();
-    double& seconds = seconds_[static_cast<int>(stage())];
+    double& seconds = editing_ ? state_.edit_seconds.back() : seconds_[static_cast<int>(stage())];
+    if (cancel_requested_ && editing_) {
+        // A cancelled edit never happened.
+        cancel_requested_ = false;
+        editing_ = false;
+        state_ = std::move(undo_.back());
+        undo_.pop_back();
+        current_ = stages_.size();
+        return false;
+    }
     if (cancel_requested_) {
         if (current_ == 0) {
             // The Lloyd stage ends with a consistent partition; nothing runs after it.
@@ -295,8 +408,8 @@ bool Pipeline::step() {
     const bool more = stages_[current_]->step();
     if (!more) {
         ++current_;
-        if (current_ == 1 && state_.stop_reason == StopReason::cancelled) current_ = stages_.size();
-        if (done()) state_.phase = "done";
+        if (current_ == 1 && !editing_ && state_.stop_reason == StopReason::cancelled) current_ = stages_.size();
+        if (done()) state_.phase = "done", editing_ = false;
     }
     seconds += elapsed(start);
     return !done();
@@ -318,7 +431,7 @@ Progress Pipeline::progress() const {
     p.phase = state_.phase;
     p.iterations = state_.iterations;
     const Lloyd* lloyd = running_lloyd();
-    if (current_ == 0) {
+    if (current_ == 0 && !editing_ && !done()) {
         p.proxies = lloyd ? static_cast<int>(lloyd->proxies().size()) : 0;
         p.rms = lloyd ? lloyd->rms() : 0;
     } else {
@@ -348,6 +461,8 @@ Result Pipeline::result(double load_seconds) const {
     t.measure = seconds(Stage::measure);
     t.postprocess = t.smooth + t.refit + t.project + t.measure;
     t.total = t.load + t.lloyd + t.postprocess;
+    t.edits = state_.edit_seconds;
+    r.edits = state_.edits;
 
     r.face_labels = face_labels();
     r.lloyd_face_labels = state_.lloyd_labels.empty() ? r.face_labels : state_.lloyd_labels;
@@ -385,6 +500,8 @@ Result Pipeline::result(double load_seconds) const {
         out.faces = p.faces;
         out.area = p.area * frame.scale * frame.scale;
         out.rms_error = p.area > 0 ? std::sqrt(p.error / p.area) * frame.scale : 0.0;
+        out.locked = i < static_cast<int>(state_.locked.size()) && state_.locked[i];
+        if (i < static_cast<int>(state_.imposed.size())) out.imposed = state_.imposed[i];
         r.proxies.push_back(out);
     }
     for (const Vec3& p : state_.projected) r.projected.push_back(frame.to_input(p));

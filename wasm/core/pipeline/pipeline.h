@@ -2,6 +2,7 @@
 // time: Lloyd → smooth → refit → project → measure (docs/ARCHITECTURE.md).
 #pragma once
 
+#include "edit/edit.h"
 #include "geometry/model.h"
 #include "io/mesh.h"
 #include "pipeline/options.h"
@@ -58,6 +59,21 @@ public:
     // The run so far (complete once done()). `load_seconds` goes into its timing.
     Result result(double load_seconds = 0) const;
 
+    // Edits of a finished run (docs/EDITS.md), each carried out by step()/run() like the
+    // run itself: Lloyd on the regions it touches (apply_edit), then the
+    // post-processing of those regions; a cancel drops it. Throws std::invalid_argument
+    // (state unchanged) while a run or an edit is under way, or when the edit does not
+    // apply. Faces are in the input's order.
+    void edit(const Edit& edit);
+    // Back to the state before the last edit, and forward again; false when there is
+    // nothing to go back (forward) to, or an edit is under way. The last kMaxUndo states
+    // are kept.
+    bool undo();
+    bool redo();
+    bool can_undo() const { return done() && !undo_.empty(); }
+    bool can_redo() const { return done() && !redo_.empty(); }
+    static constexpr std::size_t kMaxUndo = 64;
+
     // What the stages hand on to each other.
     struct State {
         std::vector<int> labels, lloyd_labels;
@@ -70,10 +86,16 @@ public:
         const char* phase = "initialize";
         std::vector<Vec3> projected;  // unit frame
         std::optional<Metrics> metrics;
+        // Per region (may be shorter than proxies: unlocked, no type imposed).
+        std::vector<char> locked;
+        std::vector<ImposedType> imposed;
+        std::vector<Edit> edits;           // applied so far
+        std::vector<double> edit_seconds;  // each one's time
     };
 
 private:
     const Lloyd* running_lloyd() const;  // the Lloyd engine while its stage runs, else null
+    void add_stages(const std::vector<char>& regions);  // post-processing (of `regions`; all when empty)
 
     InputInfo input_;
     std::vector<int> source_face_;  // Mesh::source_face
@@ -84,6 +106,8 @@ private:
     std::size_t current_ = 0;
     double seconds_[static_cast<int>(Stage::done)] = {};  // per stage
     bool cancel_requested_ = false;
+    bool editing_ = false;
+    std::vector<State> undo_, redo_;
 };
 
 }  // namespace vqsa

@@ -2,6 +2,7 @@
 // the GLB, the bindings and the benchmarks need, with no engine behind it.
 #pragma once
 
+#include "edit/edit.h"
 #include "fitting/classify.h"
 #include "fitting/quadric.h"
 #include "lloyd/lloyd.h"
@@ -31,6 +32,8 @@ struct ProxyResult {
     int faces = 0;
     double area = 0;
     double rms_error = 0;  // RMS Taubin distance of the region to its quadric
+    bool locked = false;   // by an edit: later edits leave its faces and quadric alone
+    ImposedType imposed = ImposedType::none;  // by an edit
 };
 
 struct InputInfo {
@@ -46,6 +49,7 @@ struct Timing {  // seconds
     double load = 0, lloyd = 0, postprocess = 0, total = 0;
     // The post-processing stages (0 for one that did not run): their sum is `postprocess`.
     double smooth = 0, refit = 0, project = 0, measure = 0;
+    std::vector<double> edits;  // each edit's, in order (the run's stages exclude them)
 };
 
 struct Result {
@@ -63,6 +67,7 @@ struct Result {
     std::vector<Vec3> projected;  // one per mesh vertex; empty when not projected
     std::optional<Metrics> metrics;  // per region too, indexed by proxy id
     Timing timing;
+    std::vector<Edit> edits;  // applied after the run, in order (faces in the input's order)
 };
 
 }  // namespace vqsa

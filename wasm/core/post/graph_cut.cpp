@@ -35,13 +35,17 @@ void add_arc(FlowGraph& g, int from, int to, double capacity, double reverse_cap
 
 BoundarySmoother::BoundarySmoother(const Model& model, std::vector<Quadric> proxies, std::vector<int>& labels,
                                    const std::vector<int>& anchors, const SmoothingOptions& options,
-                                   const std::vector<char>* crease)
+                                   const std::vector<char>* crease, const std::vector<char>* regions)
     : model_(model), labels_(labels), options_(options), crease_(crease) {
     double total = 0;
     for (double l : model.graph.edge_length) total += l;
     mean_edge_length_ = model.graph.edge_length.empty() ? 1.0 : total / model.graph.edge_length.size();
     errors_.reset(model, std::move(proxies));
     pairs_ = adjacent_regions(model, labels);
+    if (regions)
+        pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
+                                    [&](const auto& p) { return !(*regions)[p.first] || !(*regions)[p.second]; }),
+                     pairs_.end());
     ring_.assign(model.face_count(), 0);
     node_.assign(model.face_count(), -1);
     anchored_.assign(model.face_count(), 0);

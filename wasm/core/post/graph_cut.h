@@ -22,10 +22,11 @@ struct SmoothingOptions {
 class BoundarySmoother {
 public:
     // `anchors`: faces that keep their label (one per region, so no region vanishes);
-    // `crease` (per dual-graph link, optional): sharp edges, along which a boundary is free.
+    // `crease` (per dual-graph link, optional): sharp edges, along which a boundary is free;
+    // `regions` (per region, optional): only boundaries between two of these move.
     BoundarySmoother(const Model& model, std::vector<Quadric> proxies, std::vector<int>& labels,
                      const std::vector<int>& anchors, const SmoothingOptions& options,
-                     const std::vector<char>* crease = nullptr);
+                     const std::vector<char>* crease = nullptr, const std::vector<char>* regions = nullptr);
 
     // Smooths the next pair; false once every pair is done (then regions are made
     // connected again: stray pieces go to the neighbour they share most edges with).

@@ -15,8 +15,9 @@ struct SeamSimplifier::Region {
 
 SeamSimplifier::SeamSimplifier(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
                                std::vector<ModelChoice>& choices, const std::vector<char>* crease,
-                               const SeamOptions& options)
-    : model_(model), labels_(labels), proxies_(proxies), choices_(choices), crease_(crease), options_(options),
+                               const SeamOptions& options, const std::vector<char>* may_change)
+    : model_(model), labels_(labels), proxies_(proxies), choices_(choices), crease_(crease), may_change_(may_change),
+      options_(options),
       regions_(proxies.size()), in_strip_(model.face_count(), 0) {
     evaluator_.reset(model, quadrics_of(proxies));
     for (int f = 0; f < model.face_count(); ++f) {
@@ -54,11 +55,13 @@ void SeamSimplifier::simplify(int a) {
         return select_model(thinned(vertex_samples(model_.points, model_.triangles, rest), options_.screening_samples),
                             fit_region(moments_of(model_, rest), options_.fit).quadric, options_.selection);
     };
-    if (choices_[a].chosen.parameters <= plane_parameters) return;
+    auto may_change = [&](int r) { return !may_change_ || (*may_change_)[r]; };
+    if (choices_[a].chosen.parameters <= plane_parameters || !may_change(a)) return;
     std::set<int> neighbours;
     for (int f : regions_[a].faces)
         for (int e = g.begin(f); e < g.end(f); ++e)
-            if (labels_[g.neighbor[e]] != a && link_open(e)) neighbours.insert(labels_[g.neighbor[e]]);
+            if (labels_[g.neighbor[e]] != a && link_open(e) && may_change(labels_[g.neighbor[e]]))
+                neighbours.insert(labels_[g.neighbor[e]]);
     for (int b : neighbours) {
         if (!(proxies_[b].area > 0)) continue;
         const double mse = regions_[b].error / proxies_[b].area;

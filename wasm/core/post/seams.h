@@ -37,9 +37,11 @@ struct SeamOptions {
 // One region per step; the arrays must outlive the simplifier.
 class SeamSimplifier {
 public:
-    // `crease`: per dual-graph link, optional.
+    // `crease`: per dual-graph link, optional; `may_change` (per region, optional): the
+    // regions that may give or take faces (all when null).
     SeamSimplifier(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
-                   std::vector<ModelChoice>& choices, const std::vector<char>* crease, const SeamOptions& options);
+                   std::vector<ModelChoice>& choices, const std::vector<char>* crease, const SeamOptions& options,
+                   const std::vector<char>* may_change = nullptr);
     ~SeamSimplifier();
     bool step();  // false once every region is done
     double fraction() const;
@@ -53,6 +55,7 @@ private:
     std::vector<Proxy>& proxies_;
     std::vector<ModelChoice>& choices_;
     const std::vector<char>* crease_;
+    const std::vector<char>* may_change_;
     SeamOptions options_;
     FaceErrors evaluator_;
     std::vector<Region> regions_;

@@ -1,0 +1,170 @@
+#include "edit/apply_edit.h"
+
+#include "fitting/face_errors.h"
+#include "fitting/samples.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace vqsa {
+
+namespace {
+
+std::vector<int> faces_of(const std::vector<int>& labels, int region) {
+    std::vector<int> out;
+    for (int f = 0; f < static_cast<int>(labels.size()); ++f)
+        if (labels[f] == region) out.push_back(f);
+    return out;
+}
+
+bool adjacent(const Model& model, const std::vector<int>& labels, int a, int b) {
+    for (int f = 0; f < model.face_count(); ++f) {
+        if (labels[f] != a) continue;
+        for (int e = model.graph.begin(f); e < model.graph.end(f); ++e)
+            if (labels[model.graph.neighbor[e]] == b) return true;
+    }
+    return false;
+}
+
+// The region's face farthest from its surface (the first of equals).
+int worst_face(const Model& model, const std::vector<int>& labels, const Proxy& proxy, int region) {
+    FaceErrors errors;
+    errors.reset(model, {proxy.quadric});
+    int worst = -1;
+    double largest = -1;
+    for (int f = 0; f < model.face_count(); ++f) {
+        if (labels[f] != region) continue;
+        // Per unit area: a large face is not worse for being large.
+        const double e = errors(f, 0) / std::max(model.areas[f], 1e-300);
+        if (e > largest) largest = e, worst = f;
+    }
+    return worst;
+}
+
+// A new region seeded at `face`, taken from its region.
+int add_region(const Model& model, int face, Pipeline::State& s) {
+    const int added = static_cast<int>(s.proxies.size());
+    Proxy p;
+    p.quadric = plane_through(model, face);
+    p.seed = face;
+    s.proxies.push_back(p);
+    if (!s.choices.empty()) s.choices.emplace_back();
+    s.locked.push_back(0);
+    s.imposed.push_back(ImposedType::none);
+    s.labels[face] = added;
+    return added;
+}
+
+void remove_region(int gone, Pipeline::State& s) {
+    s.proxies.erase(s.proxies.begin() + gone);
+    if (!s.choices.empty()) s.choices.erase(s.choices.begin() + gone);
+    s.locked.erase(s.locked.begin() + gone);
+    s.imposed.erase(s.imposed.begin() + gone);
+    for (int& l : s.labels)
+        if (l > gone) --l;
+}
+
+}  // namespace
+
+std::vector<char> apply_edit(const Model& model, const LloydOptions& options, const Edit& e, Pipeline::State& state) {
+    Pipeline::State s = state;
+    const int count = static_cast<int>(s.proxies.size());
+    s.locked.resize(count, 0);
+    s.imposed.resize(count, ImposedType::none);
+    auto region_name = [](int r) { return "region " + std::to_string(r); };
+    auto check_region = [&](int r) {
+        if (r < 0 || r >= count)
+            throw std::invalid_argument(region_name(r) + " does not exist (the result has " + std::to_string(count) +
+                                        " regions)");
+    };
+    auto check_unlocked = [&](int r) {
+        check_region(r);
+        if (s.locked[r]) throw std::invalid_argument(region_name(r) + " is locked: unlock it first");
+    };
+    auto check_divisible = [&](int r) {
+        if (faces_of(s.labels, r).size() < 2)
+            throw std::invalid_argument(region_name(r) + " has a single face");
+    };
+
+    std::vector<char> touched;
+    auto touch = [&](std::initializer_list<int> regions) {
+        touched.assign(s.proxies.size(), 0);
+        for (int r : regions) touched[r] = 1;
+    };
+    switch (e.kind) {
+        case EditKind::lock:
+        case EditKind::unlock:
+            check_region(e.region);
+            s.locked[e.region] = e.kind == EditKind::lock;
+            state = std::move(s);
+            return {};
+        case EditKind::set_type: {
+            check_unlocked(e.region);
+            ModelSelectionOptions selection;
+            selection.classify = options.classify;
+            selection.imposed = e.type;
+            if (e.type != ImposedType::none) {
+                try {
+                    select_model(vertex_samples(model.points, model.triangles, faces_of(s.labels, e.region)),
+                                 s.proxies[e.region].quadric, selection);
+                } catch (const std::invalid_argument&) {
+                    throw std::invalid_argument(std::string("no ") + imposed_type_name(e.type) + " fits " +
+                                                region_name(e.region));
+                }
+            }
+            s.imposed[e.region] = e.type;
+            touch({e.region});
+            break;
+        }
+        case EditKind::merge: {
+            check_unlocked(e.region);
+            check_unlocked(e.other);
+            if (e.region == e.other) throw std::invalid_argument("merge needs two different regions");
+            if (!adjacent(model, s.labels, e.region, e.other))
+                throw std::invalid_argument(region_name(e.region) + " and " + region_name(e.other) + " are not adjacent");
+            for (int& l : s.labels)
+                if (l == e.other) l = e.region;
+            remove_region(e.other, s);
+            touch({e.region > e.other ? e.region - 1 : e.region});
+            break;
+        }
+        case EditKind::split: {
+            check_unlocked(e.region);
+            check_divisible(e.region);
+            int face = e.face;
+            if (face >= 0 && (face >= model.face_count() || s.labels[face] != e.region))
+                throw std::invalid_argument("face " + std::to_string(face) + " is not in " + region_name(e.region));
+            if (face < 0) face = worst_face(model, s.labels, s.proxies[e.region], e.region);
+            const int added = add_region(model, face, s);
+            touch({e.region, added});
+            break;
+        }
+        case EditKind::add_seed: {
+            if (e.face < 0 || e.face >= model.face_count())
+                throw std::invalid_argument("face " + std::to_string(e.face) + " does not exist");
+            const int region = s.labels[e.face];
+            if (s.locked[region])
+                throw std::invalid_argument("face " + std::to_string(e.face) + " lies in " + region_name(region) +
+                                            ", which is locked");
+            check_divisible(region);
+            const int added = add_region(model, e.face, s);
+            touch({region, added});
+            break;
+        }
+    }
+    // A merge or a split divides exactly the faces of the regions it names; an imposed type
+    // moves the boundaries with the unlocked neighbours as well, towards its surface.
+    std::vector<char> active = touched;
+    if (e.kind == EditKind::set_type)
+        for (int f = 0; f < model.face_count(); ++f) {
+            if (!touched[s.labels[f]]) continue;
+            for (int k = model.graph.begin(f); k < model.graph.end(f); ++k) {
+                const int n = s.labels[model.graph.neighbor[k]];
+                if (!s.locked[n]) active[n] = 1;
+            }
+        }
+    state = std::move(s);
+    return active;
+}
+
+}  // namespace vqsa
