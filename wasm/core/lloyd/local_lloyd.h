@@ -1,4 +1,4 @@
-// Lloyd iterations confined to some regions: what an edit re-runs (docs/METHOD.md §9).
+// Lloyd iterations confined to some regions: what an edit re-runs (docs/METHOD.md §11).
 #pragma once
 
 #include "fitting/face_errors.h"
