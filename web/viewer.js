@@ -332,6 +332,13 @@ export function createViewer(host, options = {}) {
     if (e.defaultPrevented || e.composedPath()[0]?.closest?.('input, select, textarea')) return;
     if (editBar.key(e, hovered)) e.preventDefault();
   });
+  // Escape drops a pending pick before it unpins the region (the inspector's Escape).
+  host.addEventListener('keydown', (e) => {
+    if (e.key !== 'Escape' || !editBar.pending) return;
+    editBar.key(e, hovered);
+    e.preventDefault();
+    e.stopPropagation();
+  }, true);
 
   // ---- edits ---------------------------------------------------------------------------
   // The edit bar follows the region pinned in the view or the inspector.
