@@ -367,6 +367,7 @@ export function createViewer(host, options = {}) {
     return guarded('edit', async (current) => {
       if (!result) throw new Error('run an approximation first');
       const onRow = shadow.activeElement?.matches('tr');  // keys go on from the pinned row
+      const kept = pinned ? focused : -1;  // undo and redo keep the region pinned
       clearError();
       setState('running');
       const done = await request((p) => {
@@ -376,9 +377,9 @@ export function createViewer(host, options = {}) {
       });
       if (!current()) return null;
       showResult(done, { edited: true });
-      const region = pin?.(done);
+      const region = pin ? pin(done) : kept;
       focused = -1, pinned = false;
-      if (region !== undefined && region >= 0 && region < done.proxies.length) focus(region, true);
+      if (region >= 0 && region < done.proxies.length) focus(region, true);
       if (onRow && pinned) inspector.focusRow(focused);
       updateEditBar();
       const edits = result.reportObject.edits;
@@ -541,12 +542,14 @@ export function createViewer(host, options = {}) {
     result.reportObject = JSON.parse(done.report);
     host.dataset.proxies = String(done.proxies.length);
     setStatus(summary(), 1);
+    const rms = result.reportObject.rms_error_relative;
     if (!edited) {
-      history.push([done.proxies.length, result.reportObject.rms_error_relative]);
-      timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms: result.reportObject.rms_error_relative });
+      history.push([done.proxies.length, rms]);
+      timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms });
       timeline.finish();
-      drawPlot(plot, history);
     }
+    // An edited result is marked on the run's curve.
+    drawPlot(plot, history, edited ? [done.proxies.length, rms] : null);
     fillTable();
     showEdits();
     showView();
@@ -567,7 +570,8 @@ export function createViewer(host, options = {}) {
     updateEditBar();
     showView();
     applyVisibility();
-    drawPlot(plot, history, frame ? [frame.proxies, frame.rms] : null);
+    const edited = result?.reportObject?.edits?.length ? [result.proxies.length, result.reportObject.rms_error_relative] : null;
+    drawPlot(plot, history, frame ? [frame.proxies, frame.rms] : edited);
   }
 
   // `overrides`: options of the schema by their camelCase names; they stay set.

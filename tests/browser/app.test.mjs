@@ -530,6 +530,12 @@ test('edits by clicks and keys: split, merge, retype, undo; the GLB carries the 
   assert.equal(await proxies(), n + 1);
   assert.deepEqual(await edits(), ['split region 0']);
   assert.equal(await page.isDisabled('[data-testid="edit-redo"]'), false);
+  // Shift+S waits for a face; Escape drops the pick and keeps the region pinned.
+  await page.keyboard.press('Shift+S');
+  assert.equal(await page.isVisible('.vqsa-edit-prompt'), true);
+  await page.keyboard.press('Escape');
+  assert.equal(await page.isVisible('.vqsa-edit-prompt'), false);
+  assert.equal(await page.isDisabled('[data-testid="edit-split"]'), false);
 
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('[data-testid="download-glb"]')]);
   const bytes = new Uint8Array(readFileSync(await download.path()));
