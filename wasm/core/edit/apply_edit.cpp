@@ -3,6 +3,7 @@
 #include "fitting/face_errors.h"
 #include "fitting/samples.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -15,15 +16,6 @@ std::vector<int> faces_of(const std::vector<int>& labels, int region) {
     for (int f = 0; f < static_cast<int>(labels.size()); ++f)
         if (labels[f] == region) out.push_back(f);
     return out;
-}
-
-bool adjacent(const Model& model, const std::vector<int>& labels, int a, int b) {
-    for (int f = 0; f < model.face_count(); ++f) {
-        if (labels[f] != a) continue;
-        for (int e = model.graph.begin(f); e < model.graph.end(f); ++e)
-            if (labels[model.graph.neighbor[e]] == b) return true;
-    }
-    return false;
 }
 
 // The region's face farthest from its surface (the first of equals).
@@ -66,8 +58,8 @@ void remove_region(int gone, Pipeline::State& s) {
 
 }  // namespace
 
-std::vector<char> apply_edit(const Model& model, const LloydOptions& options, const Edit& e, Pipeline::State& state) {
-    Pipeline::State s = state;
+std::vector<char> apply_edit(const Model& model, const LloydOptions& options, const Edit& e, Pipeline::State& s) {
+    // Every check comes before the first change (sizing the per-region flags changes nothing).
     const int count = static_cast<int>(s.proxies.size());
     s.locked.resize(count, 0);
     s.imposed.resize(count, ImposedType::none);
@@ -96,7 +88,6 @@ std::vector<char> apply_edit(const Model& model, const LloydOptions& options, co
         case EditKind::unlock:
             check_region(e.region);
             s.locked[e.region] = e.kind == EditKind::lock;
-            state = std::move(s);
             return {};
         case EditKind::set_type: {
             check_unlocked(e.region);
@@ -120,7 +111,8 @@ std::vector<char> apply_edit(const Model& model, const LloydOptions& options, co
             check_unlocked(e.region);
             check_unlocked(e.other);
             if (e.region == e.other) throw std::invalid_argument("merge needs two different regions");
-            if (!adjacent(model, s.labels, e.region, e.other))
+            const auto pairs = adjacent_regions(model, s.labels);
+            if (!std::binary_search(pairs.begin(), pairs.end(), std::pair<int, int>(std::minmax(e.region, e.other))))
                 throw std::invalid_argument(region_name(e.region) + " and " + region_name(e.other) + " are not adjacent");
             for (int& l : s.labels)
                 if (l == e.other) l = e.region;
@@ -156,14 +148,10 @@ std::vector<char> apply_edit(const Model& model, const LloydOptions& options, co
     // moves the boundaries with the unlocked neighbours as well, towards its surface.
     std::vector<char> active = touched;
     if (e.kind == EditKind::set_type)
-        for (int f = 0; f < model.face_count(); ++f) {
-            if (!touched[s.labels[f]]) continue;
-            for (int k = model.graph.begin(f); k < model.graph.end(f); ++k) {
-                const int n = s.labels[model.graph.neighbor[k]];
-                if (!s.locked[n]) active[n] = 1;
-            }
+        for (const auto& [a, b] : adjacent_regions(model, s.labels)) {
+            if (touched[a] && !s.locked[b]) active[b] = 1;
+            if (touched[b] && !s.locked[a]) active[a] = 1;
         }
-    state = std::move(s);
     return active;
 }
 

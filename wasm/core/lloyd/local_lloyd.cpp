@@ -19,10 +19,10 @@ LocalLloyd::LocalLloyd(const Model& model, const LloydOptions& options, std::vec
 
 void LocalLloyd::refit() {
     refit_regions(model_, labels_, options_, proxies_, active_);
-    std::vector<std::vector<int>> faces(proxies_.size());
     bool any = false;
     for (std::size_t i = 0; i < proxies_.size(); ++i) any |= active_[i] && imposed_[i] != ImposedType::none;
     if (!any) return;
+    std::vector<std::vector<int>> faces(proxies_.size());
     for (int f = 0; f < model_.face_count(); ++f)
         if (imposed_[labels_[f]] != ImposedType::none) faces[labels_[f]].push_back(f);
     ModelSelectionOptions selection;

@@ -327,8 +327,8 @@ void Pipeline::edit(const Edit& edit) {
     if (!done() || editing_) throw std::invalid_argument("an edit needs a finished run");
     Edit in_model = edit;
     if (edit.face >= 0) {
-        const auto kept = std::find(source_face_.begin(), source_face_.end(), edit.face);
         if (edit.face >= input_.faces) throw std::invalid_argument("face " + std::to_string(edit.face) + " does not exist");
+        const auto kept = std::find(source_face_.begin(), source_face_.end(), edit.face);
         if (kept == source_face_.end())
             throw std::invalid_argument("face " + std::to_string(edit.face) + " was dropped (zero area)");
         in_model.face = static_cast<int>(kept - source_face_.begin());
