@@ -18,7 +18,10 @@ export function drawPlot(canvas, history, marker = null) {
   for (const [n, rms] of history) if (rms > 0 && !(least.get(n) <= rms)) least.set(n, rms);
   const points = [...least].sort((a, b) => a[0] - b[0]);
   if (points.length < 2) return;
-  const maxN = Math.max(...points.map(([n]) => n)), logs = points.map(([, r]) => Math.log10(r));
+  // The axes hold the marker too (an edited result may have more proxies, or another error,
+  // than the run passed through).
+  const shown = marker && marker[1] > 0 ? [...points, marker] : points;
+  const maxN = Math.max(...shown.map(([n]) => n)), logs = shown.map(([, r]) => Math.log10(r));
   const lo = Math.floor(Math.min(...logs)), hi = Math.ceil(Math.max(...logs)) + (Math.min(...logs) === Math.max(...logs) ? 1 : 0);
   const x = (n) => pad + ((n - 1) / Math.max(1, maxN - 1)) * (w - pad - 8);
   const y = (r) => 6 + ((hi - Math.log10(r)) / (hi - lo)) * (h - pad - 2);
