@@ -4,19 +4,23 @@
 
 namespace vqsa {
 
-void Flooding::push(const Entry& e) {
-    heap_.push_back(e);
-    std::size_t i = heap_.size() - 1;
+namespace {
+
+template <class Entry>
+void heap_push(std::vector<Entry>& heap, const Entry& e) {
+    heap.push_back(e);
+    std::size_t i = heap.size() - 1;
     while (i > 0) {
         const std::size_t parent = (i - 1) / 2;
-        if (!(heap_[parent] > e)) break;
-        heap_[i] = heap_[parent];
+        if (!(heap[parent] > e)) break;
+        heap[i] = heap[parent];
         i = parent;
     }
-    heap_[i] = e;
+    heap[i] = e;
 }
 
-Flooding::Entry Flooding::pop() {
+template <class Entry>
+Entry heap_pop(std::vector<Entry>& heap_) {
     // Bottom-up: the hole at the root goes down to a leaf along the smaller children (one
     // comparison per level), then the last entry rises from there; it belongs near the
     // bottom, so this compares less than sifting it down. Same order, same pops.
@@ -41,12 +45,25 @@ Flooding::Entry Flooding::pop() {
     return top;
 }
 
+}  // namespace
+
+void Flooding::push(const Entry& e) {
+    if (!heap_.empty() && heap_.front() > e) heap_push(near_, e);
+    else heap_push(heap_, e);
+}
+
+Flooding::Entry Flooding::pop() {
+    if (!near_.empty() && (heap_.empty() || heap_.front() > near_.front())) return heap_pop(near_);
+    return heap_pop(heap_);
+}
+
 void Flooding::run(const Model& model, FaceErrors& errors, const std::vector<int>& seeds, std::vector<int>& labels,
                    const std::vector<char>* crease) {
     const DualGraph& graph = model.graph;
     queued_.assign(2 * labels.size(), -1);
     crossed_.assign(labels.size(), 0);
     heap_.clear();
+    near_.clear();
     constexpr std::uint64_t kCrossed = std::uint64_t{1} << 63;
 
     auto queue_neighbours = [&](int face, int proxy) {
@@ -71,7 +88,7 @@ void Flooding::run(const Model& model, FaceErrors& errors, const std::vector<int
         if (seeds[p] >= 0) labels[seeds[p]] = static_cast<int>(p);
     for (std::size_t p = 0; p < seeds.size(); ++p)
         if (seeds[p] >= 0) queue_neighbours(seeds[p], static_cast<int>(p));
-    while (!heap_.empty()) {
+    while (!heap_.empty() || !near_.empty()) {
         const Entry e = pop();
         const int face = static_cast<int>(e.key & 0xffffffffu);
         if (labels[face] >= 0) continue;

@@ -37,7 +37,11 @@ private:
     void push(const Entry& e);
     Entry pop();
 
+    // Entries below heap_'s top when queued go to the small near_ heap instead (pops take
+    // the least of both tops: the same order). Neighbours of the face just taken often have
+    // errors as low as it had, and are taken next: they skip the deep heap.
     std::vector<Entry> heap_;
+    std::vector<Entry> near_;
     // The last two (proxy, crossed) that queued each face: skips re-queuing a face for
     // the same proxy from another neighbour (the error would be the same) unless the new
     // path crossed no crease and the old one did.
