@@ -1,5 +1,7 @@
 #include "cad_parts.h"
 
+#include "portable_math.h"
+
 #include "geometry/rng.h"
 
 #include <Eigen/Geometry>
@@ -22,12 +24,19 @@ public:
     double uniform() { return static_cast<double>(rng_.next() >> 11) * 0x1.0p-53; }
     double normal() {  // Box–Muller
         const double u1 = std::max(uniform(), 1e-300), u2 = uniform();
-        return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
+        return std::sqrt(-2 * portable::log(u1)) * portable::cos(2 * kPi * u2);
     }
 
 private:
     SplitMix64 rng_;
 };
+
+// base^n by multiplication: exact for 1.5^n up to n = 33, whatever the platform's pow.
+double power(double base, int n) {
+    double p = 1;
+    for (int i = 0; i < n; ++i) p *= base;
+    return p;
+}
 
 using Labeller = std::function<int(int)>;  // band segment → true face
 
@@ -49,7 +58,7 @@ public:
         const double phase = 2 * kPi * random_.uniform();
         for (int i = 0; i <= n; ++i) {
             const double u = double(i) / n;
-            t[i] = options_.irregular ? u + 0.7 * (std::sin(2 * kPi * u + phase) - std::sin(phase)) / (2 * kPi) : u;
+            t[i] = options_.irregular ? u + 0.7 * (portable::sin(2 * kPi * u + phase) - portable::sin(phase)) / (2 * kPi) : u;
         }
         t[0] = 0, t[n] = 1;
         if (options_.irregular) {
@@ -78,7 +87,7 @@ public:
         for (int r = 0; r <= rows; ++r) {
             const double u = double(r) / rows;
             // Graded rows when irregular: spacing grows geometrically across the band.
-            s[r] = options_.irregular && rows > 1 ? (std::pow(1.5, r) - 1) / (std::pow(1.5, rows) - 1) : u;
+            s[r] = options_.irregular && rows > 1 ? (power(1.5, r) - 1) / (power(1.5, rows) - 1) : u;
         }
         std::vector<std::vector<int>> index(rows + 1, std::vector<int>(m));
         for (int r = 0; r <= rows; ++r)
@@ -327,7 +336,7 @@ Part l_bracket(const PartOptions& o) {
     const std::vector<double> s = b.spacing(2 * k);
     for (std::size_t i = 0; i < s.size(); ++i) {
         const double a = -kPi / 2 - s[i] * kPi / 2;  // from straight below the axis to its left
-        arc.push_back(i == 0 ? xz(t + r, t) : i + 1 == s.size() ? xz(t, t + r) : xz(t + r + r * std::cos(a), t + r + r * std::sin(a)));
+        arc.push_back(i == 0 ? xz(t + r, t) : i + 1 == s.size() ? xz(t, t + r) : xz(t + r + r * portable::cos(a), t + r + r * portable::sin(a)));
     }
     std::vector<Vec3> outer_path, inner_path;
     for (const auto* piece : {&outer_bottom_far, &outer_bottom_near, &outer_side_near}) append_open(outer_path, *piece);
@@ -384,7 +393,7 @@ Part stepped_shaft(const PartOptions& o) {
     angles.pop_back();  // a closed loop: 2π is 0
     auto ring = [&](double r, double z) {
         std::vector<Vec3> out;
-        for (double a : angles) out.emplace_back(r * std::cos(a), r * std::sin(a), z);
+        for (double a : angles) out.emplace_back(r * portable::cos(a), r * portable::sin(a), z);
         return out;
     };
     const auto r1_bottom = ring(R1, 0), r1_top = ring(R1, z1), r2_bottom = ring(R2, z1), r2_top = ring(R2, z2);
@@ -400,7 +409,7 @@ Part stepped_shaft(const PartOptions& o) {
     const std::vector<double> lat = b.spacing(b.count(10));
     for (std::size_t i = 1; i + 1 < lat.size(); ++i) {
         const double a = lat[i] * kPi / 2;
-        const std::vector<Vec3> next = ring(R3 * std::cos(a), z4 + R3 * std::sin(a));
+        const std::vector<Vec3> next = ring(R3 * portable::cos(a), z4 + R3 * portable::sin(a));
         b.band(previous, next, 1, true, ball);
         previous = next;
     }
@@ -419,14 +428,14 @@ Part flange(const PartOptions& o) {
     std::vector<int> hole_face;
     for (int k = 0; k < holes; ++k) {
         const double a = 2 * kPi * k / holes;
-        hole_face.push_back(b.surface(cylinder({Rp * std::cos(a), Rp * std::sin(a), 0}, Vec3::UnitZ(), rb)));
+        hole_face.push_back(b.surface(cylinder({Rp * portable::cos(a), Rp * portable::sin(a), 0}, Vec3::UnitZ(), rb)));
     }
     // Sector k spans the angles between the radial lines k and k + 1.
     const int n_arc = b.count(10), n_radial = b.count(6), rows = b.count(6), z_rows = b.count(4);
     std::vector<std::vector<Vec3>> radial;  // line k at angle (2k - 1)π/6, from Ri to Ro
     for (int k = 0; k < holes; ++k) {
         const double a = (2 * k - 1) * kPi / holes;
-        const Vec3 u(std::cos(a), std::sin(a), 0);
+        const Vec3 u(portable::cos(a), portable::sin(a), 0);
         radial.push_back(b.segment(Ri * u, Ro * u, n_radial));
     }
     std::vector<Vec3> outer_loop, inner_loop;
@@ -437,8 +446,8 @@ Part flange(const PartOptions& o) {
         const std::vector<double> so = b.spacing(n_arc), si = b.spacing(n_arc);
         for (int i = 1; i < n_arc; ++i) {
             const double ao = a0 + so[i] * (a1 - a0), ai = a1 - si[i] * (a1 - a0);
-            outer_arc.emplace_back(Ro * std::cos(ao), Ro * std::sin(ao), 0);
-            inner_arc.emplace_back(Ri * std::cos(ai), Ri * std::sin(ai), 0);
+            outer_arc.emplace_back(Ro * portable::cos(ao), Ro * portable::sin(ao), 0);
+            inner_arc.emplace_back(Ri * portable::cos(ai), Ri * portable::sin(ai), 0);
         }
         outer_arc.push_back(stop.back());
         inner_arc.push_back(start.front());
@@ -450,7 +459,7 @@ Part flange(const PartOptions& o) {
         append_open(outer_loop, outer_arc);
         append_open(inner_loop, std::vector<Vec3>(inner_arc.rbegin(), inner_arc.rend()));
         const double a = 2 * kPi * k / holes;
-        const Vec3 centre(Rp * std::cos(a), Rp * std::sin(a), 0);
+        const Vec3 centre(Rp * portable::cos(a), Rp * portable::sin(a), 0);
         const auto hole_bottom = onto_circle(sector, centre, rb), hole_top = at_height(hole_bottom, T);
         b.band(sector, hole_bottom, rows, true, bottom);
         b.band(at_height(sector, T), hole_top, rows, true, top);
@@ -511,14 +520,14 @@ Part slotted_block(const PartOptions& o) {
     std::vector<double> s = b.spacing(n_arc);
     for (int i = 0; i < n_arc; ++i) {
         const double t = -kPi / 2 + s[i] * kPi;
-        slot.push_back({i == 0 ? c + Vec3(a, -r, 0) : c + Vec3(a + r * std::cos(t), r * std::sin(t), 0), slot_right});
+        slot.push_back({i == 0 ? c + Vec3(a, -r, 0) : c + Vec3(a + r * portable::cos(t), r * portable::sin(t), 0), slot_right});
     }
     for (const Vec3& p : b.segment(c + Vec3(a, r, 0), c + Vec3(-a, r, 0), n_flat)) slot.push_back({p, slot_high});
     slot.pop_back();
     s = b.spacing(n_arc);
     for (int i = 0; i < n_arc; ++i) {
         const double t = kPi / 2 + s[i] * kPi;
-        slot.push_back({i == 0 ? c + Vec3(-a, r, 0) : c + Vec3(-a + r * std::cos(t), r * std::sin(t), 0), slot_left});
+        slot.push_back({i == 0 ? c + Vec3(-a, r, 0) : c + Vec3(-a + r * portable::cos(t), r * portable::sin(t), 0), slot_left});
     }
     // Rays from the centre: through each slot sample to the block's outline, and through
     // each corner of the outline back to the slot.

@@ -1,5 +1,7 @@
 #include "shapes.h"
 
+#include "portable_math.h"
+
 #include <cmath>
 
 namespace vqsa {
@@ -29,9 +31,9 @@ void add_arc(std::vector<ProfilePoint>& profile, double rc, double zc, double ra
     for (int i = 1; i <= steps; ++i) {
         const double a = a0 + (a1 - a0) * i / steps;
         // Exact zero on the axis, so that the pole welds into one vertex.
-        double r = rc + radius * std::cos(a);
+        double r = rc + radius * portable::cos(a);
         if (std::abs(r) < 1e-12 * radius) r = 0;
-        profile.push_back({r, zc + radius * std::sin(a), patch});
+        profile.push_back({r, zc + radius * portable::sin(a), patch});
     }
 }
 
@@ -41,7 +43,7 @@ Shape revolve(const std::vector<ProfilePoint>& profile, int around) {
     for (const ProfilePoint& p : profile)
         for (int j = 0; j < around; ++j) {
             const double a = 2 * M_PI * j / around;
-            soup.positions.emplace_back(p.r * std::cos(a), p.r * std::sin(a), p.z);
+            soup.positions.emplace_back(p.r * portable::cos(a), p.r * portable::sin(a), p.z);
         }
     std::vector<int> patch;
     for (int i = 0; i + 1 < rows; ++i)

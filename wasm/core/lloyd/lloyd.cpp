@@ -376,10 +376,13 @@ void Lloyd::decide_at_target() {
     // to a neighbour it lies on one surface with, and the run ends with fewer proxies than
     // asked, as fitted: as automatic growth ends, and as a run below its count whose every
     // region the noise explains.
+    // So do two regions on one exact surface (their union within `precision`): a count above
+    // the part's surfaces leaves pieces of a surface as well as slivers (a 16-face facet
+    // column of the turned part's cone, exactly planar, is no handful).
     // All at once: Lloyd then settles once, not once per sliver (joint/30 has nine). A
     // small true face (a thin plate's side) is no sliver: it lies on no neighbour's surface.
-    if (merge_sliver()) {
-        while (merge_sliver()) continue;
+    if (merge_sliver() || merge_same_surface(false)) {
+        while (merge_sliver() || merge_same_surface(false)) continue;
         finishing_ = true, finish_reason_ = StopReason::fitted;
         return start_operation(Operation::merge);
     }
@@ -407,8 +410,9 @@ bool Lloyd::decide_finish() {
 void Lloyd::finish() {
     // One surface, one region: growing, merge neighbours that lie on the same surface and
     // regions of a handful of faces (too few to tell a surface) into a neighbour; at a
-    // count the user chose, only slivers.
-    if (automatic() ? merge_same_surface() || merge_handful() : merge_sliver()) return start_operation(Operation::merge);
+    // count the user chose, only slivers and pieces of one exact surface.
+    if (automatic() ? merge_same_surface() || merge_handful() : merge_sliver() || merge_same_surface(false))
+        return start_operation(Operation::merge);
     stop(finish_reason_);
 }
 
@@ -753,11 +757,12 @@ bool Lloyd::merge_cheapest() {
     });
 }
 
-bool Lloyd::merge_same_surface() {
+bool Lloyd::merge_same_surface(bool within_noise) {
     // Two regions lie on one surface when the union's fit explains each of them about as
-    // well as its own fit does (within a quarter), or within the noise of its faces. Each
-    // part is judged alone, so that a small region's misfit does not hide in a large
-    // region's noise.
+    // well as its own fit does (within a quarter), or (`within_noise`) within the noise of
+    // its faces; otherwise the union must also be within `precision` (an exact surface,
+    // not one the noise blurs). Each part is judged alone, so that a small region's misfit
+    // does not hide in a large region's noise.
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     struct Candidate {
         double cost;
@@ -770,7 +775,10 @@ bool Lloyd::merge_same_surface() {
         const Proxy &a = proxies_[i], &b = proxies_[j];
         const Union u = fit_union(i, j);
         const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = u.moments[0] * u.fit.mean_squared;
-        if (!(united_error <= 1.25 * parts + 1e-12 * u.moments[0] || united_error <= noise_energy(i) + noise_energy(j))) continue;
+        if (within_noise ? !(united_error <= 1.25 * parts + 1e-12 * u.moments[0] || united_error <= noise_energy(i) + noise_energy(j))
+                         : !(united_error <= 1.25 * parts + 1e-12 * u.moments[0] &&
+                             united_error <= u.moments[0] * options_.precision * options_.precision))
+            continue;
         if (has_two_parts(classify_union(u).type)) continue;
         candidates.push_back({united_error - parts, static_cast<int>(k), u.fit});
     }
@@ -965,6 +973,21 @@ void Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
         if (l == gone) l = keep;
     remove_proxy(gone);
     evaluate();
+}
+
+std::vector<char> strips(const Model& model, const std::vector<int>& labels, int count, int min_faces) {
+    std::vector<int> faces(count, 0);
+    std::vector<char> has_inside(count, 0);
+    for (int f = 0; f < model.face_count(); ++f) {
+        ++faces[labels[f]];
+        bool inside = true;
+        for (int e = model.graph.begin(f); e < model.graph.end(f) && inside; ++e)
+            inside = labels[model.graph.neighbor[e]] == labels[f];
+        if (inside) has_inside[labels[f]] = 1;
+    }
+    std::vector<char> strip(count);
+    for (int i = 0; i < count; ++i) strip[i] = faces[i] < min_faces || !has_inside[i];
+    return strip;
 }
 
 Quadric plane_through(const Model& model, int face) {

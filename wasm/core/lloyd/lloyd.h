@@ -111,6 +111,12 @@ double evaluate_regions(const Model& model, const std::vector<int>& labels, std:
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr,
                         const std::vector<int>* chart = nullptr);
 
+// Per region (of `count`): whether it is a strip, too thin to tell a surface of its own:
+// fewer than `min_faces` faces, or one facet wide (no face with all its neighbours in it;
+// a column of a ruled band is exactly planar, so a plane fits it as well as the surface it
+// lies on).
+std::vector<char> strips(const Model& model, const std::vector<int>& labels, int count, int min_faces);
+
 // The plane of a face (a new proxy's quadric before its first fit).
 Quadric plane_through(const Model& model, int face);
 
@@ -217,8 +223,10 @@ private:
     // Which part of q (classified as `c`) a face lies on: ±1, or 0.
     int side_of(const Quadric& q, int face, const Classification& c, double margin) const;
     double part_margin(int proxy) const;
-    // Adjacent regions on one surface (their union fits as well as they do apart).
-    bool merge_same_surface();
+    // Adjacent regions on one surface (their union fits as well as they do apart, or, when
+    // `within_noise`, within their noise). At a count the user chose, only the former, and
+    // within `precision`: the noise must not take away a face it blurs (a thin plate's side).
+    bool merge_same_surface(bool within_noise = true);
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
     bool merge_handful();
     // A region of fewer than min_quadric_faces faces into a neighbour it lies on one
