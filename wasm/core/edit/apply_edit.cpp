@@ -47,6 +47,20 @@ int add_region(const Model& model, int face, Pipeline::State& s) {
     return added;
 }
 
+// Steps across edges from `from` to every face of `region` (-1 elsewhere), breadth first.
+std::vector<int> steps_within(const Model& model, const std::vector<int>& labels, int region, int from) {
+    std::vector<int> steps(labels.size(), -1), queue{from};
+    steps[from] = 0;
+    for (std::size_t i = 0; i < queue.size(); ++i) {
+        const int f = queue[i];
+        for (int e = model.graph.begin(f); e < model.graph.end(f); ++e) {
+            const int n = model.graph.neighbor[e];
+            if (labels[n] == region && steps[n] < 0) steps[n] = steps[f] + 1, queue.push_back(n);
+        }
+    }
+    return steps;
+}
+
 void remove_region(int gone, Pipeline::State& s) {
     s.proxies.erase(s.proxies.begin() + gone);
     if (!s.choices.empty()) s.choices.erase(s.choices.begin() + gone);
@@ -57,6 +71,25 @@ void remove_region(int gone, Pipeline::State& s) {
 }
 
 }  // namespace
+
+void halve_for_new_region(const Model& model, std::vector<int>& labels, int added) {
+    int face = -1;
+    for (int f = 0; f < model.face_count() && face < 0; ++f)
+        if (labels[f] == added) face = f;
+    if (face < 0) return;
+    // The region it was taken from: where its face's neighbours lie.
+    int from = -1;
+    for (int e = model.graph.begin(face); e < model.graph.end(face) && from < 0; ++e)
+        if (labels[model.graph.neighbor[e]] != added) from = labels[model.graph.neighbor[e]];
+    if (from < 0) return;
+    for (int& l : labels)
+        if (l == added) l = from;
+    const std::vector<int> from_face = steps_within(model, labels, from, face);
+    const int far = static_cast<int>(std::max_element(from_face.begin(), from_face.end()) - from_face.begin());
+    const std::vector<int> from_far = steps_within(model, labels, from, far);
+    for (int f = 0; f < model.face_count(); ++f)
+        if (from_face[f] >= 0 && from_face[f] < from_far[f]) labels[f] = added;
+}
 
 std::vector<char> apply_edit(const Model& model, const LloydOptions& options, const Edit& e, Pipeline::State& s) {
     // Every check comes before the first change (sizing the per-region flags changes nothing).

@@ -18,4 +18,11 @@ namespace vqsa {
 // but the length of the per-region flags (`locked`, `imposed`: sized to the regions).
 std::vector<char> apply_edit(const Model& model, const LloydOptions& options, const Edit& edit, Pipeline::State& state);
 
+// For a split or a seed whose new region `added` (still its seed face alone) came out of
+// Lloyd a strip (its old region's fit won the race everywhere: the region lies on one
+// surface): gives it the faces of its old region nearer its seed than the old region's
+// face farthest from it, in steps across edges (ties stay), so that both start from a fit
+// to a real part of the region.
+void halve_for_new_region(const Model& model, std::vector<int>& labels, int added);
+
 }  // namespace vqsa

@@ -79,10 +79,15 @@ private:
 };
 
 // An edit's Lloyd: iterations on the regions it touched and their neighbours, one per step.
+// A split's or a seed's new region (the last) that Lloyd leaves a strip starts again from
+// half of its old region (halve_for_new_region).
 class EditLloydStage : public PipelineStage {
 public:
-    EditLloydStage(const Model& model, const Options& options, State& state, std::vector<char> regions, const char* phase)
-        : model_(model), options_(options), state_(state), regions_(std::move(regions)), phase_(phase) {}
+    EditLloydStage(const Model& model, const Options& options, State& state, std::vector<char> regions, const char* phase,
+                   bool divides)
+        : model_(model), options_(options), state_(state), regions_(std::move(regions)), phase_(phase) {
+        if (divides) start_ = {state.labels, state.proxies};
+    }
     Stage id() const override { return Stage::lloyd; }
     double fraction() const override { return local_ ? local_->fraction() : 0; }
 
@@ -97,8 +102,17 @@ public:
         const bool more = local_->step();
         state_.energy = local_->energy();
         if (more) return true;
-        state_.lloyd_labels = state_.labels;
         local_.reset();
+        const int added = static_cast<int>(state_.proxies.size()) - 1;
+        if (!start_.first.empty() &&
+            strips(model_, state_.labels, added + 1, options_.lloyd.min_quadric_faces)[added]) {
+            state_.labels = std::move(start_.first);
+            state_.proxies = std::move(start_.second);
+            start_ = {};
+            halve_for_new_region(model_, state_.labels, added);
+            return true;
+        }
+        state_.lloyd_labels = state_.labels;
         return false;
     }
 
@@ -108,6 +122,7 @@ private:
     State& state_;
     std::vector<char> regions_;
     const char* phase_;
+    std::pair<std::vector<int>, std::vector<Proxy>> start_;  // labels and proxies as the edit left them
     std::unique_ptr<LocalLloyd> local_;
 };
 
@@ -345,7 +360,8 @@ void Pipeline::edit(const Edit& edit) {
     cancel_requested_ = false;
     if (regions.empty()) return;  // lock, unlock: nothing moves
     editing_ = true;
-    stages_.push_back(std::make_unique<EditLloydStage>(model(), options_, state_, regions, edit_kind_name(edit.kind)));
+    stages_.push_back(std::make_unique<EditLloydStage>(model(), options_, state_, regions, edit_kind_name(edit.kind),
+                                                       edit.kind == EditKind::split || edit.kind == EditKind::add_seed));
     add_stages(regions);
 }
 
