@@ -35,7 +35,8 @@ function assertSameResult(wasm, native) {
     `RMS ${wasm.metrics.rms} vs ${native.metrics.rms}`);
 }
 
-for (const [input, proxies] of [['fandisk.off', 22], ['example:capsule', 3]]) {
+// turned_part:20000 differed while the examples used libm's sin and cos (examples/portable_math.h).
+for (const [input, proxies] of [['fandisk.off', 22], ['example:capsule', 3], ['example:turned_part:20000', 11]]) {
   test(`${input}: WASM gives the native build's labels and coefficients`, () => {
     const json = join(work, 'native.json');
     const path = input.startsWith('example:') ? input : join(meshes, input);

@@ -379,10 +379,8 @@ void Lloyd::decide_at_target() {
     // So do two regions on one exact surface (their union within `precision`): a count above
     // the part's surfaces leaves pieces of a surface as well as slivers (a 16-face facet
     // column of the turned part's cone, exactly planar, is no handful).
-    // All at once: Lloyd then settles once, not once per sliver (joint/30 has nine). A
-    // small true face (a thin plate's side) is no sliver: it lies on no neighbour's surface.
-    if (merge_sliver() || merge_same_surface(false)) {
-        while (merge_sliver() || merge_same_surface(false)) continue;
+    // A small true face (a thin plate's side) is no sliver: it lies on no neighbour's surface.
+    if (merge_at_count()) {
         finishing_ = true, finish_reason_ = StopReason::fitted;
         return start_operation(Operation::merge);
     }
@@ -411,8 +409,11 @@ void Lloyd::finish() {
     // One surface, one region: growing, merge neighbours that lie on the same surface and
     // regions of a handful of faces (too few to tell a surface) into a neighbour; at a
     // count the user chose, only slivers and pieces of one exact surface.
-    if (automatic() ? merge_same_surface() || merge_handful() : merge_sliver() || merge_same_surface(false))
+    if (automatic()) {
+        if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
+    } else if (merge_at_count()) {
         return start_operation(Operation::merge);
+    }
     stop(finish_reason_);
 }
 
@@ -872,6 +873,13 @@ bool Lloyd::merge_handful() {
     return merge_least_cost(
         [&](int a, int b) { return std::min(proxies_[a].faces, proxies_[b].faces) < options_.min_quadric_faces; },
         [&](const Union& u, int a, int b) { return !union_on_two_parts(u, a, b) && !faces_both_ways(u.fit.quadric, a, b); });
+}
+
+bool Lloyd::merge_at_count() {
+    // All at once: Lloyd then settles once, not once per merge.
+    if (!merge_sliver() && !merge_same_surface(false)) return false;
+    while (merge_sliver() || merge_same_surface(false)) continue;
+    return true;
 }
 
 bool Lloyd::merge_sliver() {

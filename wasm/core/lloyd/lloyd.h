@@ -232,6 +232,9 @@ private:
     // A region of fewer than min_quadric_faces faces into a neighbour it lies on one
     // surface with (one_surface), the cheapest.
     bool merge_sliver();
+    // Every sliver and every pair on one exact surface (merge_same_surface(false)), at once
+    // (joint/30 has nine slivers, a turned part at 50 thirty pieces): whether any.
+    bool merge_at_count();
     // Whether q explains regions a and b as one surface (see merge_same_surface).
     bool one_surface(const Quadric& q, int a, int b) const;
     // Whether `error`, the region's error against another quadric, says it lies on that
