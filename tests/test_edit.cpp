@@ -56,6 +56,13 @@ int input_face_on(const Part& part, int face) {
     return part.mesh.source_face[faces[faces.size() / 2]];
 }
 
+// The first region matched (score.face_of) to a true face of `type`, or -1.
+int region_on(const Part& part, const PartitionScore& score, int regions, QuadricType type) {
+    for (int i = 0; i < regions; ++i)
+        if (score.face_of[i] >= 0 && part.surfaces[score.face_of[i]].type == type) return i;
+    return -1;
+}
+
 Part posed(const std::string& name, double noise = 0) {
     PartOptions o;
     o.random_pose = true;
@@ -107,9 +114,7 @@ TEST(Edit, MergeOfTwoPiecesOfACylinderIsOneCylinder) {
     Pipeline p(part.mesh, without_projection(truth));
     const Result r = finish(p);
     const PartitionScore score = score_partition(part, r.face_labels, truth);
-    int cylinder = -1;
-    for (int i = 0; i < truth && cylinder < 0; ++i)
-        if (score.face_of[i] >= 0 && part.surfaces[score.face_of[i]].type == QuadricType::cylinder) cylinder = i;
+    const int cylinder = region_on(part, score, truth, QuadricType::cylinder);
     ASSERT_GE(cylinder, 0);
     const TrueSurface& s = part.surfaces[score.face_of[cylinder]];
 
@@ -134,9 +139,7 @@ TEST(Edit, SetTypeImposesTheType) {
     Pipeline p(part.mesh, without_projection(truth));
     const Result r = finish(p);
     const PartitionScore score = score_partition(part, r.face_labels, truth);
-    int cone = -1;
-    for (int i = 0; i < truth; ++i)
-        if (score.face_of[i] >= 0 && part.surfaces[score.face_of[i]].type == QuadricType::cone) cone = i;
+    const int cone = region_on(part, score, truth, QuadricType::cone);  // the shaft has one
     ASSERT_GE(cone, 0);
     const TrueSurface& s = part.surfaces[score.face_of[cone]];
 
