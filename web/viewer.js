@@ -641,11 +641,10 @@ export function createViewer(host, options = {}) {
   });
   runButton.addEventListener('click', () => run());
   cancelButton.addEventListener('click', cancel);
-  // The GLB in the colours on screen: by region (the result's own), or by type (asked of
-  // the worker, which keeps the result).
+  // The GLB in the colours on screen, built by the worker (which keeps the result) when asked.
   glbButton.addEventListener('click', async () => {
     try {
-      const bytes = display.colouring === 'type' ? await client.glb('type') : result.glb;
+      const bytes = await client.glb(display.colouring);
       download(bytes, `${baseName()}.vqsa.glb`, 'model/gltf-binary');
     } catch (e) {
       showError(e.fatal ? 'engine' : 'run', e.message);

@@ -10,7 +10,7 @@
 // load() resolves to {info, positions: Float32Array, triangles: Uint32Array, sourceFaces};
 // progress events carry {stage, phase, proxies, iteration, rms, fraction, labels: Int32Array
 // per triangle}; run() resolves to {report (JSON text), proxies, faceLabels, lloydFaceLabels,
-// projected, vertexErrors, glb: Uint8Array, progress, history: {canUndo, canRedo}}, and so do
+// projected, vertexErrors, progress, history: {canUndo, canRedo}}, and so do
 // edit(), undo() and redo(). Options: the option schema's camelCase
 // names (vqsa-schema.js, as the CLI's flags). Errors carry `fatal` when the engine itself
 // failed (it restarts).

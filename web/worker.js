@@ -5,7 +5,7 @@
 //   out: {type:'loaded', id, info, positions, triangles, sourceFaces}
 //        {type:'progress', id, stage, phase, proxies, iteration, rms, fraction, labels}
 //          (each new stage and operation, else ≤ 25 per second)
-//        {type:'result', id, ..., history: {canUndo, canRedo}, glb (coloured by region)}
+//        {type:'result', id, ..., history: {canUndo, canRedo}}
 //          (after a run, an edit, an undo or a redo)  {type:'glb', id, glb}
 //        {type:'cancelled', id}  {type:'error', id, message, fatal}
 import createVqsaModule from './vqsa.mjs';
@@ -68,15 +68,17 @@ async function drive(id) {
 
 function postResult(id) {
   const faceLabels = session.faceLabels(), lloydFaceLabels = session.lloydFaceLabels();
-  const projected = session.projected(), vertexErrors = session.vertexErrors(), glb = session.glb('region');
+  // No GLB here: it is built when asked for (a download), not after every run (on 1.5M faces
+  // it is 67 MB and 1.8 s).
+  const projected = session.projected(), vertexErrors = session.vertexErrors();
   post({
     type: 'result', id,
     progress: session.progress(),
     report: session.report(),
     proxies: JSON.parse(session.proxies()),
     history: session.history(),
-    faceLabels, lloydFaceLabels, projected, vertexErrors, glb,
-  }, [faceLabels.buffer, lloydFaceLabels.buffer, projected.buffer, vertexErrors.buffer, glb.buffer]);
+    faceLabels, lloydFaceLabels, projected, vertexErrors,
+  }, [faceLabels.buffer, lloydFaceLabels.buffer, projected.buffer, vertexErrors.buffer]);
 }
 
 // Requests run one after another (a load arriving during a run waits for it to end), but

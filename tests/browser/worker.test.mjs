@@ -36,9 +36,11 @@ test('the worker runs fandisk with growing progress and a result', async () => {
         labelsOk &&= p.labels instanceof Int32Array && p.labels.length === mesh.triangles.length / 3;
       },
     });
+    // The GLB is built when asked for, from the result the worker keeps.
+    const glb = await client.glb();
     client.terminate();
-    return { counts, labelsOk, faces: mesh.info.faces, proxies: result.proxies.length, glb: result.glb.length,
-      report: JSON.parse(result.report) };
+    return { counts, labelsOk, faces: mesh.info.faces, proxies: result.proxies.length, glbInResult: 'glb' in result,
+      glbMagic: new TextDecoder().decode(glb.subarray(0, 4)), glb: glb.length, report: JSON.parse(result.report) };
   });
   assert.equal(outcome.faces, 12946);
   assert.ok(outcome.counts.length >= 5, `only ${outcome.counts.length} progress events`);
@@ -47,6 +49,8 @@ test('the worker runs fandisk with growing progress and a result', async () => {
   assert.ok(outcome.labelsOk);
   assert.equal(outcome.proxies, 22);
   assert.equal(outcome.report.stop_reason, 'proxies');
+  assert.equal(outcome.glbInResult, false);
+  assert.equal(outcome.glbMagic, 'glTF');
   assert.ok(outcome.glb > 1000);
 });
 
