@@ -6,7 +6,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <unordered_map>
 #include <stdexcept>
 #include <string>
 
@@ -80,20 +79,28 @@ void refit_regions(const Model& model, const std::vector<int>& labels, const Llo
 
 double evaluate_regions(const Model& model, const std::vector<int>& labels, std::vector<Proxy>& proxies,
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed,
-                        const std::vector<int>* chart) {
+                        const ChartFaces* charts) {
     // With charts, a seed lies in the chart holding most of its region's area: a region
     // does not wander into a neighbouring chart because, under noise, its face of least
     // error happens to lie there, and the chart it belongs to floods from it first.
     std::vector<int> anchor(proxies.size(), -1);
-    if (chart) {
-        std::unordered_map<std::uint64_t, double> area;  // (region, chart) → area
-        for (int f = 0; f < model.face_count(); ++f)
-            area[std::uint64_t(labels[f]) << 32 | std::uint32_t((*chart)[f])] += model.areas[f];
-        std::vector<double> largest(proxies.size(), -1);
-        for (const auto& [key, a] : area) {
-            const int region = static_cast<int>(key >> 32), c = static_cast<int>(key & 0xffffffffu);
-            // Ties go to the lower chart, whatever the hash order.
-            if (a > largest[region] || (a == largest[region] && c < anchor[region])) largest[region] = a, anchor[region] = c;
+    const std::vector<int>* chart = charts ? &charts->chart : nullptr;
+    if (charts) {
+        // Chart by chart, each region's area in it (ties go to the lower chart).
+        std::vector<double> largest(proxies.size(), -1), area(proxies.size(), 0);
+        std::vector<int> present;
+        std::vector<char> seen(proxies.size(), 0);
+        for (int c = 0; c < static_cast<int>(charts->faces.size()); ++c) {
+            for (int f : charts->faces[c]) {
+                const int l = labels[f];
+                if (!seen[l]) seen[l] = 1, present.push_back(l);
+                area[l] += model.areas[f];
+            }
+            for (int l : present) {
+                if (area[l] > largest[l]) largest[l] = area[l], anchor[l] = c;
+                area[l] = 0, seen[l] = 0;
+            }
+            present.clear();
         }
     }
     std::vector<double> best(proxies.size(), std::numeric_limits<double>::infinity());
@@ -271,8 +278,9 @@ void Lloyd::iterate() {
 }
 
 void Lloyd::evaluate(const std::vector<char>* changed) {
+    const ChartFaces charts{features_.chart, chart_faces_};
     energy_ = evaluate_regions(model_, labels_, proxies_, errors_, face_errors_, changed,
-                               options_.init == Initialization::features ? &features_.chart : nullptr);
+                               options_.init == Initialization::features ? &charts : nullptr);
     region_noise_.assign(proxies_.size(), 0.0);
     for (int f = 0; f < model_.face_count(); ++f) region_noise_[labels_[f]] += face_noise_[f];
 }
@@ -980,7 +988,11 @@ void Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
     for (int& l : labels_)
         if (l == gone) l = keep;
     remove_proxy(gone);
-    evaluate();
+    // The other regions kept their faces and quadrics, so their errors stand (a run of
+    // merges at the end costs one pass over the faces each, not one evaluation of all).
+    std::vector<char> changed(proxies_.size(), 0);
+    changed[keep > gone ? keep - 1 : keep] = 1;
+    evaluate(&changed);
 }
 
 std::vector<char> strips(const Model& model, const std::vector<int>& labels, int count, int min_faces) {

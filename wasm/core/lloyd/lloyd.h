@@ -103,13 +103,20 @@ Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options);
 void refit_regions(const Model& model, const std::vector<int>& labels, const LloydOptions& options,
                    std::vector<Proxy>& proxies, const std::vector<char>& changed = {});
 
+// Charts for evaluate_regions: the chart of each face and the faces of each chart, in
+// increasing order.
+struct ChartFaces {
+    const std::vector<int>& chart;
+    const std::vector<std::vector<int>>& faces;
+};
+
 // d(t, P) of every face against its region's proxy into `errors`; each proxy's error and
-// seed (its face of least error; with `chart`, of least error in the chart of its
-// previous seed if the region still reaches it). Regions not flagged in `changed` (when
-// given) keep the errors already in `errors`. Returns the energy Σ d(t, P).
+// seed (its face of least error; with `charts`, of least error in the chart holding most
+// of its region's area). Regions not flagged in `changed` (when given) keep the errors
+// already in `errors`. Returns the energy Σ d(t, P).
 double evaluate_regions(const Model& model, const std::vector<int>& labels, std::vector<Proxy>& proxies,
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr,
-                        const std::vector<int>* chart = nullptr);
+                        const ChartFaces* charts = nullptr);
 
 // Per region (of `count`): whether it is a strip, too thin to tell a surface of its own:
 // fewer than `min_faces` faces, or one facet wide (no face with all its neighbours in it;
