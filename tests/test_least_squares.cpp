@@ -11,7 +11,7 @@ namespace {
 
 using Circle = Eigen::Matrix<double, 3, 1>;  // centre x, y and radius of a circle in z = 0
 
-const ResidualFactory<3> kCircle = [](const Circle& c) {
+const auto kCircle = [](const Circle& c) {
     return [c](const Vec3& p) { return std::hypot(p.x() - c[0], p.y() - c[1]) - c[2]; };
 };
 
