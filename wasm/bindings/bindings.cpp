@@ -83,18 +83,19 @@ public:
     }
 
     // Steps for about `milliseconds` (at least one step), or up to a Lloyd operation
-    // (insert, split, merge, teleport), so that the page sees every proxy count the run
-    // passes through; false when done.
+    // (insert, split, merge, teleport) or a new stage, so that the page sees every proxy
+    // count and every stage the run passes through (and can cancel in each); false when done.
     bool step_for(double milliseconds) {
         return guarded([&] {
             Pipeline& p = pipeline();
             const double until = emscripten_get_now() + milliseconds;
-            auto operation = [&] {
+            const Stage stage = p.progress().stage;
+            auto boundary = [&] {
                 const Progress now = p.progress();
-                return now.stage == Stage::lloyd && std::strcmp(now.phase, "lloyd") != 0;
+                return now.stage != stage || (now.stage == Stage::lloyd && std::strcmp(now.phase, "lloyd") != 0);
             };
             bool more = p.step();
-            while (more && !operation() && emscripten_get_now() < until) more = p.step();
+            while (more && !boundary() && emscripten_get_now() < until) more = p.step();
             return more;
         });
     }
