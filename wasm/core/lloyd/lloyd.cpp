@@ -784,10 +784,11 @@ bool Lloyd::merge_same_surface(bool within_noise) {
         const Proxy &a = proxies_[i], &b = proxies_[j];
         const Union u = fit_union(i, j);
         const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = u.moments[0] * u.fit.mean_squared;
-        if (within_noise ? !(united_error <= 1.25 * parts + 1e-12 * u.moments[0] || united_error <= noise_energy(i) + noise_energy(j))
-                         : !(united_error <= 1.25 * parts + 1e-12 * u.moments[0] &&
-                             united_error <= u.moments[0] * options_.precision * options_.precision))
-            continue;
+        const bool as_well_as_apart = united_error <= 1.25 * parts + 1e-12 * u.moments[0];
+        const bool one = within_noise
+                             ? as_well_as_apart || united_error <= noise_energy(i) + noise_energy(j)
+                             : as_well_as_apart && united_error <= u.moments[0] * options_.precision * options_.precision;
+        if (!one) continue;
         if (has_two_parts(classify_union(u).type)) continue;
         candidates.push_back({united_error - parts, static_cast<int>(k), u.fit});
     }
@@ -885,9 +886,9 @@ bool Lloyd::merge_handful() {
 
 bool Lloyd::merge_at_count() {
     // All at once: Lloyd then settles once, not once per merge.
-    if (!merge_sliver() && !merge_same_surface(false)) return false;
-    while (merge_sliver() || merge_same_surface(false)) continue;
-    return true;
+    bool any = false;
+    while (merge_sliver() || merge_same_surface(false)) any = true;
+    return any;
 }
 
 bool Lloyd::merge_sliver() {
@@ -930,8 +931,7 @@ bool Lloyd::merge_sliver() {
         }
     }
     if (sliver < 0) return false;
-    const int kept = into > sliver ? into - 1 : into;
-    merge_pair(into, sliver, {proxies_[into].quadric, proxies_[into].fit_error});
+    const int kept = merge_pair(into, sliver, {proxies_[into].quadric, proxies_[into].fit_error});
     proxies_[kept].fitted = false;  // refitted with its new faces by the next iteration
     return true;
 }
@@ -977,7 +977,7 @@ bool Lloyd::repair_stuck() {
     return added == 1;
 }
 
-void Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
+int Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
     Proxy& p = proxies_[keep];
     add_to(p.moments, proxies_[gone].moments);
     p.area = p.moments[0];
@@ -988,11 +988,13 @@ void Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
     for (int& l : labels_)
         if (l == gone) l = keep;
     remove_proxy(gone);
+    const int kept = keep > gone ? keep - 1 : keep;
     // The other regions kept their faces and quadrics, so their errors stand (a run of
     // merges at the end costs one pass over the faces each, not one evaluation of all).
     std::vector<char> changed(proxies_.size(), 0);
-    changed[keep > gone ? keep - 1 : keep] = 1;
+    changed[kept] = 1;
     evaluate(&changed);
+    return kept;
 }
 
 std::vector<char> strips(const Model& model, const std::vector<int>& labels, int count, int min_faces) {

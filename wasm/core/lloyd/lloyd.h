@@ -261,7 +261,8 @@ private:
     // A region of a handful of faces that explains nothing, while another has errors the
     // noise does not explain: merged away and reinserted there.
     bool repair_stuck();
-    void merge_pair(int keep, int gone, const Fit& fit);
+    // Region `gone` into region `keep`, of quadric `fit`; returns keep's index after the removal.
+    int merge_pair(int keep, int gone, const Fit& fit);
     void add_proxy(int seed);  // a plane through the seed face
     bool is_seed(int face) const;
     void remove_proxy(int index);
