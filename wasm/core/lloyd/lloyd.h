@@ -135,6 +135,9 @@ std::vector<int> seeds_of(const std::vector<Proxy>& proxies);
 // A mesh with faces, and a proxy count it can hold (std::invalid_argument).
 void check_proxy_count(const Model& model, const LloydOptions& options);
 
+// The faces of each region.
+using RegionFaces = std::vector<std::vector<int>>;
+
 class Lloyd {
 public:
     Lloyd(const Model& model, const LloydOptions& options);
@@ -217,7 +220,7 @@ private:
     // Merges the adjacent pair, among those `eligible`, whose union costs least and is
     // `acceptable`.
     bool merge_least_cost(const std::function<bool(int, int)>& eligible,
-                          const std::function<bool(const Union&, int, int)>& acceptable);
+                          const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable);
     bool invalid(int proxy, Parts* parts = nullptr) const;
     bool split_invalid();
     // The adjacent pair whose union fit costs least, if its union is valid.
@@ -236,36 +239,41 @@ private:
     bool merge_same_surface(bool within_noise = true);
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
     bool merge_handful();
-    // A region of fewer than min_quadric_faces faces into a neighbour it lies on one
-    // surface with (one_surface), the cheapest.
-    bool merge_sliver();
+    // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
+    // surface with (one_surface), the cheapest: whether any.
+    bool merge_slivers();
     // Every sliver and every pair on one exact surface (merge_same_surface(false)), at once
     // (joint/30 has nine slivers, a turned part at 50 thirty pieces): whether any.
     bool merge_at_count();
     // Whether q explains regions a and b as one surface (see merge_same_surface).
-    bool one_surface(const Quadric& q, int a, int b) const;
+    bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const;
     // Whether `error`, the region's error against another quadric, says it lies on that
     // quadric's surface as well as on its own.
     bool lies_on(int region, double error) const;
     // A face's area times the cosine between its normal and q's gradient (0 where q has none).
     double facing(const Quadric& q, int face) const;
-    // Whether regions a and b face opposite ways along q's normal (two sides of a sheet).
-    bool faces_both_ways(const Quadric& q, int a, int b) const;
+    // Whether regions of faces a and b face opposite ways along q's normal (two sides of a sheet).
+    bool faces_both_ways(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b) const;
     // Whether a face's (filtered) normal is off q's gradient by more than the crease angle.
     bool off_normal(const Quadric& q, int face) const;
     // Whether most of a region's faces are off_normal to q.
-    bool strays(const Quadric& q, int region) const;
-    // Whether q, fitted to regions a and b, turns through the creases between them (by
-    // half the crease angle or more, on half of them): it would be fitting two faces.
-    bool bends_through_creases(const Quadric& q, int a, int b) const;
+    bool strays(const Quadric& q, const std::vector<int>& region) const;
+    // Whether q, fitted to the faces a and region b, turns through the creases between
+    // them (by half the crease angle or more, on half of them): it would be fitting two faces.
+    bool bends_through_creases(const Quadric& q, const std::vector<int>& a, int b) const;
     // A region of a handful of faces that explains nothing, while another has errors the
     // noise does not explain: merged away and reinserted there.
     bool repair_stuck();
     // Region `gone` into region `keep`, of quadric `fit`; returns keep's index after the removal.
     int merge_pair(int keep, int gone, const Fit& fit);
+    // Each (gone, keep) in turn: region gone into region keep (which must stay), in one pass
+    // over the faces; the merged regions keep their quadrics. Returns each old region's new
+    // index (-1: merged away).
+    std::vector<int> merge_regions(const std::vector<std::pair<int, int>>& merges);
+    // The faces of each region, in increasing order.
+    RegionFaces faces_by_region() const;
     void add_proxy(int seed);  // a plane through the seed face
     bool is_seed(int face) const;
-    void remove_proxy(int index);
     Classification classify_proxy(int proxy) const;
 
     const Model& model_;
