@@ -285,4 +285,13 @@ TEST(CadExtraction, AboveTheTrueCountNoSliverIsLeft) {
     const Result example = test::approximate(example_mesh("turned_part"), counted(7));
     EXPECT_EQ(example.proxies.size(), 6u);
     EXPECT_EQ(example.stop_reason, StopReason::fitted);
+    // Far above the count (50 on five surfaces), the pieces left over include rings of a
+    // sphere's tessellation, one facet wide: exactly cones, so their own fits said they lay
+    // on no sphere, and 23 regions were left at 20K faces. Judged against the sphere's own
+    // faces instead, they go to it.
+    for (const char* axle : {"axle:10000", "axle:20000"}) {
+        const Result r = test::approximate(example_mesh(axle), counted(50));
+        EXPECT_EQ(r.proxies.size(), 5u) << axle;
+        EXPECT_EQ(r.stop_reason, StopReason::fitted) << axle;
+    }
 }

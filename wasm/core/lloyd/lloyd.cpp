@@ -316,21 +316,33 @@ void Lloyd::decide() {
     if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
         return stop(StopReason::tolerance);
     // Repairs are judged by what they bought, like insertions: three in a row that do not
-    // lower the energy end them (a proxy moved off a sliver beside exact surfaces only
-    // makes another sliver; one that pays late still may). A repair from a partition
-    // already repaired from has come round in a cycle: no more from there.
-    if (energy_before_repair_ >= 0) {
-        unpaid_repairs_ = energy_ < energy_before_repair_ * (1 - options_.convergence) ? 0 : unpaid_repairs_ + 1;
-        energy_before_repair_ = -1;
+    // take the energy below the least it had before them end them (a proxy moved off a
+    // sliver beside exact surfaces only makes another sliver; one that pays late still
+    // may). Against the least, not the last: a repair that only undoes the harm of the one
+    // before it buys nothing. A repair from a partition already repaired from has come
+    // round in a cycle: no more from there.
+    if (repair_pending_) {
+        repair_pending_ = false;
+        unpaid_repairs_ = energy_ < best_before_repair_.energy * (1 - options_.convergence) ? 0 : unpaid_repairs_ + 1;
         if (unpaid_repairs_ >= 3) repairs_left_ = 0;
     }
     if (repairs_left_ > 0 && (target == 0 || count == target) &&
-        std::find(repair_states_.begin(), repair_states_.end(), state) == repair_states_.end() && repair_stuck()) {
-        --repairs_left_;
-        repair_states_.push_back(state);
-        energy_before_repair_ = energy_;
-        return start_operation(Operation::teleport);
+        std::find(repair_states_.begin(), repair_states_.end(), state) == repair_states_.end()) {
+        if (best_before_repair_.labels.empty() || energy_ < best_before_repair_.energy)
+            best_before_repair_ = {labels_, errors_, proxies_, energy_};
+        if (repair_stuck()) {
+            --repairs_left_;
+            repair_states_.push_back(state);
+            repair_pending_ = true;
+            return start_operation(Operation::teleport);
+        }
     }
+    // Repairs that did not pay are undone: the partition goes back to the best one they
+    // started from (at the same count; a repair never changes it).
+    if (!best_before_repair_.labels.empty() && best_before_repair_.proxies.size() == proxies_.size() &&
+        best_before_repair_.energy < energy_ * (1 - options_.convergence))
+        restore(best_before_repair_);
+    best_before_repair_ = {};
     if (target > 0 && count == target) return decide_at_target();
     if (automatic() && decide_finish()) return;
     if (count >= model_.face_count()) return stop(StopReason::exhausted);
@@ -354,12 +366,16 @@ void Lloyd::judge_teleport() {
     teleport_pending_ = false;
     if (energy_ < snapshot_.energy * (1 - options_.convergence)) return;
     // The teleport did not pay: go back, and stop trying (the same move would be chosen again).
-    labels_ = snapshot_.labels;
-    errors_ = snapshot_.errors;
-    proxies_ = snapshot_.proxies;
-    energy_ = snapshot_.energy;
-    evaluate();
+    restore(snapshot_);
     teleports_left_ = 0;
+}
+
+void Lloyd::restore(const Snapshot& snapshot) {
+    labels_ = snapshot.labels;
+    errors_ = snapshot.errors;
+    proxies_ = snapshot.proxies;
+    energy_ = snapshot.energy;
+    evaluate();
 }
 
 void Lloyd::decide_at_target() {
@@ -808,12 +824,14 @@ bool Lloyd::merge_same_surface(bool within_noise) {
     return false;
 }
 
-bool Lloyd::lies_on(int region, double error) const {
+bool Lloyd::lies_on(int region, double error, bool strip, double reference) const {
     // Within a quarter of its own fit's error, or within the tolerance a chart gets against
-    // its own fit (chart_factor² times its noise).
+    // its own fit (chart_factor² times its noise); a strip, within a quarter of the other
+    // faces' error per unit area.
     const Proxy& p = proxies_[region];
     return error <= 1.25 * p.error + 1e-12 * p.area ||
-           error <= options_.chart_factor * options_.chart_factor * region_noise_[region];
+           error <= options_.chart_factor * options_.chart_factor * region_noise_[region] ||
+           (strip && error <= 1.25 * reference * p.area);
 }
 
 double Lloyd::facing(const Quadric& q, int face) const {
@@ -829,7 +847,10 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
     double error[2] = {0, 0};
     for (int k : {0, 1})
         for (int f : faces[k == 0 ? a : b]) error[k] += evaluator(f, 0);
-    if (!lies_on(a, error[0]) || !lies_on(b, error[1])) return false;
+    const int m = options_.min_quadric_faces;
+    if (!lies_on(a, error[0], is_strip(model_, labels_, faces[a], m), error[1] / proxies_[b].area) ||
+        !lies_on(b, error[1], is_strip(model_, labels_, faces[b], m), error[0] / proxies_[a].area))
+        return false;
     return !bends_through_creases(q, faces[a], b) && !faces_both_ways(q, faces[a], faces[b]) && !strays(q, faces[a]) &&
            !strays(q, faces[b]);
 }
@@ -945,7 +966,9 @@ bool Lloyd::merge_slivers() {
                 for (int e = g.begin(f); e < g.end(f); ++e)
                     if (labels_[g.neighbor[e]] == n) beside += facing(q, g.neighbor[e]);
             }
-            if (on_surface && lies_on(s, error) && own * beside > 0 && error < best.error) best.error = error, best.into = n;
+            const double reference = proxies_[n].error / proxies_[n].area;  // its own faces, per unit area
+            if (on_surface && lies_on(s, error, true, reference) && own * beside > 0 && error < best.error)
+                best.error = error, best.into = n;
         }
         if (best.into >= 0) choices.push_back(best);
     }
@@ -1048,19 +1071,15 @@ RegionFaces Lloyd::faces_by_region() const {
     return faces;
 }
 
-std::vector<char> strips(const Model& model, const std::vector<int>& labels, int count, int min_faces) {
-    std::vector<int> faces(count, 0);
-    std::vector<char> has_inside(count, 0);
-    for (int f = 0; f < model.face_count(); ++f) {
-        ++faces[labels[f]];
+bool is_strip(const Model& model, const std::vector<int>& labels, const std::vector<int>& faces, int min_faces) {
+    if (static_cast<int>(faces.size()) < min_faces) return true;
+    for (int f : faces) {
         bool inside = true;
         for (int e = model.graph.begin(f); e < model.graph.end(f) && inside; ++e)
             inside = labels[model.graph.neighbor[e]] == labels[f];
-        if (inside) has_inside[labels[f]] = 1;
+        if (inside) return false;
     }
-    std::vector<char> strip(count);
-    for (int i = 0; i < count; ++i) strip[i] = faces[i] < min_faces || !has_inside[i];
-    return strip;
+    return true;
 }
 
 Quadric plane_through(const Model& model, int face) {

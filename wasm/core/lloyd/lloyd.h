@@ -118,11 +118,11 @@ double evaluate_regions(const Model& model, const std::vector<int>& labels, std:
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr,
                         const ChartFaces* charts = nullptr);
 
-// Per region (of `count`): whether it is a strip, too thin to tell a surface of its own:
-// fewer than `min_faces` faces, or one facet wide (no face with all its neighbours in it;
-// a column of a ruled band is exactly planar, so a plane fits it as well as the surface it
-// lies on).
-std::vector<char> strips(const Model& model, const std::vector<int>& labels, int count, int min_faces);
+// Whether a region (its faces, labelled in `labels`) is a strip, too thin to tell a surface
+// of its own: fewer than `min_faces` faces, or one facet wide (no face with all its
+// neighbours in it; a column of a ruled band is exactly planar, a ring of a sphere's
+// tessellation exactly a cone, so its own fit says nothing of the surface it lies on).
+bool is_strip(const Model& model, const std::vector<int>& labels, const std::vector<int>& faces, int min_faces);
 
 // The plane of a face (a new proxy's quadric before its first fit).
 Quadric plane_through(const Model& model, int face);
@@ -180,6 +180,7 @@ private:
     // The next operation (or the stop), after Lloyd has settled.
     void decide();
     void judge_teleport();
+    void restore(const Snapshot& snapshot);
     void decide_at_target();
     bool decide_finish();  // automatic count: whether growth has ended (then finishes)
     void finish();
@@ -248,8 +249,9 @@ private:
     // Whether q explains regions a and b as one surface (see merge_same_surface).
     bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const;
     // Whether `error`, the region's error against another quadric, says it lies on that
-    // quadric's surface as well as on its own.
-    bool lies_on(int region, double error) const;
+    // quadric's surface as well as on its own; for a `strip` (is_strip), as well as the
+    // faces that quadric was fitted to: `reference` is their error per unit area.
+    bool lies_on(int region, double error, bool strip, double reference) const;
     // A face's area times the cosine between its normal and q's gradient (0 where q has none).
     double facing(const Quadric& q, int face) const;
     // Whether regions of faces a and b face opposite ways along q's normal (two sides of a sheet).
@@ -301,7 +303,8 @@ private:
     std::vector<std::uint64_t> split_states_;  // partitions a split was made from (partition_hash)
     int repairs_left_ = 0;
     std::vector<std::uint64_t> repair_states_;  // partitions a stuck-proxy repair was made from
-    double energy_before_repair_ = -1;           // the last repair's, until it is judged
+    bool repair_pending_ = false;                // the last repair, until it is judged
+    Snapshot best_before_repair_;                // the partition of least energy a repair started from
     int unpaid_repairs_ = 0;                     // repairs in a row that did not pay
     bool iterating_ = false;
     bool teleport_pending_ = false;

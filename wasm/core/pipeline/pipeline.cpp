@@ -104,8 +104,10 @@ public:
         if (more) return true;
         local_.reset();
         const int added = static_cast<int>(state_.proxies.size()) - 1;
-        if (!start_.first.empty() &&
-            strips(model_, state_.labels, added + 1, options_.lloyd.min_quadric_faces)[added]) {
+        std::vector<int> added_faces;
+        for (int f = 0; f < model_.face_count(); ++f)
+            if (state_.labels[f] == added) added_faces.push_back(f);
+        if (!start_.first.empty() && is_strip(model_, state_.labels, added_faces, options_.lloyd.min_quadric_faces)) {
             state_.labels = std::move(start_.first);
             state_.proxies = std::move(start_.second);
             start_ = {};
