@@ -18,9 +18,16 @@ import { options as schema } from './vqsa-schema.js';
 const EVENTS = ['state', 'loaded', 'progress', 'result', 'edit', 'error'];
 const EDITS = ['split', 'merge', 'setType', 'lock', 'unlock', 'addSeed', 'undo', 'redo'];
 
-// An attribute's text as the option's value (the core checks the ranges).
+// An attribute's text as the option's value (the core checks the ranges). A boolean is
+// true when present without a value (<vqsa-viewer measure>); the words the core reads as
+// booleans become booleans (the settings panel shows them), any other text goes to the
+// core as it is, which rejects it with an error event naming the option.
+const BOOLEAN_WORDS = { true: true, 1: true, yes: true, on: true, false: false, 0: false, no: false, off: false };
 function parse(option, text) {
-  if (option.kind === 'boolean') return !['false', '0', 'off', 'no'].includes(text.trim().toLowerCase());
+  if (option.kind === 'boolean') {
+    const word = text.trim().toLowerCase();
+    return word === '' ? true : Object.hasOwn(BOOLEAN_WORDS, word) ? BOOLEAN_WORDS[word] : text;
+  }
   if (option.kind === 'choice' || (option.kind === 'count' && text.trim() === 'auto')) return text.trim();
   return text.trim() === '' ? NaN : Number(text);
 }

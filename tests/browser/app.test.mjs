@@ -274,6 +274,13 @@ test('<vqsa-viewer>: options as attributes and properties, one run per change, e
     out.runError = await error;
     element.setAttribute('rings', '1');
     await next('result');
+    // A boolean attribute: present without a value is true, a word it cannot read an error.
+    error = next('error');
+    element.setAttribute('smooth', 'flase');
+    out.booleanError = await error;
+    result = next('result');
+    element.setAttribute('smooth', '');
+    out.smoothReport = await result;
     // A src that cannot be fetched: type 'load', and nothing runs after it.
     events.length = 0;
     error = next('error');
@@ -292,6 +299,9 @@ test('<vqsa-viewer>: options as attributes and properties, one run per change, e
   assert.equal(outcome.runs, 1);
   assert.equal(outcome.runError.type, 'run');
   assert.match(outcome.runError.message, /rings/);
+  assert.equal(outcome.booleanError.type, 'run');
+  assert.match(outcome.booleanError.message, /smooth must be true or false, not "flase"/);
+  assert.equal(outcome.smoothReport.options.smooth, true);
   assert.equal(outcome.loadError.type, 'load');
   assert.match(outcome.loadError.message, /missing\.off/);
   assert.deepEqual(outcome.statesAfterFailedLoad, ['loading', 'error']);
