@@ -328,9 +328,10 @@ void Lloyd::decide() {
     }
     if (repairs_left_ > 0 && (target == 0 || count == target) &&
         std::find(repair_states_.begin(), repair_states_.end(), state) == repair_states_.end()) {
-        if (best_before_repair_.labels.empty() || energy_ < best_before_repair_.energy)
+        const Stuck found = find_stuck();
+        if (found.region >= 0 && (best_before_repair_.labels.empty() || energy_ < best_before_repair_.energy))
             best_before_repair_ = {labels_, errors_, proxies_, energy_};
-        if (repair_stuck()) {
+        if (found.region >= 0 && repair(found)) {
             --repairs_left_;
             repair_states_.push_back(state);
             repair_pending_ = true;
@@ -989,9 +990,9 @@ bool Lloyd::merge_slivers() {
     return true;
 }
 
-bool Lloyd::repair_stuck() {
+Lloyd::Stuck Lloyd::find_stuck() const {
     const int count = static_cast<int>(proxies_.size());
-    if (count < 2) return false;
+    if (count < 2) return {};
     // The region whose errors the noise explains least, and the smallest negligible one.
     int worst = -1, stuck = -1;
     double worst_excess = 0;
@@ -1002,7 +1003,7 @@ bool Lloyd::repair_stuck() {
         const double excess = p.error - std::max(noise_energy(i), automatic() ? floor : 0.0);
         if (excess > worst_excess) worst_excess = excess, worst = i;
     }
-    if (worst < 0) return false;
+    if (worst < 0) return {};
     for (int i = 0; i < count; ++i) {
         const Proxy& p = proxies_[i];
         if (i == worst || p.faces > handful) continue;
@@ -1010,7 +1011,12 @@ bool Lloyd::repair_stuck() {
         // far below what the worst region leaves unexplained.
         if (p.error + noise_energy(i) < 0.1 * worst_excess && (stuck < 0 || p.area < proxies_[stuck].area)) stuck = i;
     }
-    if (stuck < 0) return false;
+    return stuck < 0 ? Stuck{} : Stuck{stuck, worst};
+}
+
+bool Lloyd::repair(const Stuck& found) {
+    const int count = static_cast<int>(proxies_.size());
+    const int stuck = found.region, worst = found.worst;
     // Its faces go to the neighbour sharing most edges; a new proxy starts in the worst region.
     std::vector<int> shared(count, 0);
     const DualGraph& g = model_.graph;

@@ -263,9 +263,14 @@ private:
     // Whether q, fitted to the faces a and region b, turns through the creases between
     // them (by half the crease angle or more, on half of them): it would be fitting two faces.
     bool bends_through_creases(const Quadric& q, const std::vector<int>& a, int b) const;
-    // A region of a handful of faces that explains nothing, while another has errors the
-    // noise does not explain: merged away and reinserted there.
-    bool repair_stuck();
+    // A region of a handful of faces that explains nothing, while another (`worst`) has
+    // errors the noise does not explain (region -1: none).
+    struct Stuck {
+        int region = -1, worst = -1;
+    };
+    Stuck find_stuck() const;
+    // Merges the stuck region away and reinserts its proxy in the worst region.
+    bool repair(const Stuck& stuck);
     // Region `gone` into region `keep`, of quadric `fit`; returns keep's index after the removal.
     int merge_pair(int keep, int gone, const Fit& fit);
     // Each (gone, keep) in turn: region gone into region keep (which must stay), in one pass
