@@ -56,6 +56,25 @@ const canvasDigest = (p) => p.evaluate(() => {
   return Array.from(c.getImageData(0, 0, 32, 32).data).join(',');
 });
 
+// Does `action` and waits for the run it starts to end in one of the `wanted` states. The
+// states are recorded as they change: a short run goes from running to done between two
+// polls of waitForFunction.
+async function runAndWait(p, action, wanted = ['done']) {
+  await p.evaluate(() => {
+    const host = document.querySelector('.vqsa-viewer');
+    window.stateObserver?.disconnect();
+    window.seenStates = [];
+    window.stateObserver = new MutationObserver((records) => {
+      for (const r of records) window.seenStates.push(r.oldValue);
+      window.seenStates.push(host.dataset.state);
+    });
+    window.stateObserver.observe(host, { attributes: true, attributeFilter: ['data-state'], attributeOldValue: true });
+  });
+  await action();
+  await p.waitForFunction((w) => window.seenStates.includes('running') &&
+    w.includes(document.querySelector('.vqsa-viewer').dataset.state), wanted, { timeout: 120000 });
+}
+
 async function setProxies(p, n) {
   const input = p.locator('[data-option="proxies"] input[type="number"]');
   await input.fill(String(n));
@@ -316,24 +335,18 @@ test('a dropped CAD mesh runs with the automatic count until a count is chosen',
   const fresh = await openPage('index.html');
   await waitFor(fresh, ['done']);
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '6');  // the example's surfaces
-  await drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' });
-  await waitFor(fresh, ['running']);
-  await waitFor(fresh, ['done']);
+  await runAndWait(fresh, () => drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' }));
   // A capped cylinder is three surfaces: its side and two disks.
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '3');
   assert.equal(await fresh.isChecked('[data-option="proxies"] input[type="checkbox"]'), true);
   await fresh.screenshot({ path: join(shots, 'app-automatic.png') });
   await setProxies(fresh, 2);
-  await drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' });
-  await waitFor(fresh, ['running']);
-  await waitFor(fresh, ['done']);
+  await runAndWait(fresh, () => drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' }));
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '2');
   assert.equal(await fresh.isChecked('[data-option="proxies"] input[type="checkbox"]'), false);
   // More than its three surfaces: three regions, and the status says why.
   await setProxies(fresh, 6);
-  await fresh.click('button:has-text("Run")');
-  await waitFor(fresh, ['running']);
-  await waitFor(fresh, ['done']);
+  await runAndWait(fresh, () => fresh.click('button:has-text("Run")'));
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '3');
   assert.match(await fresh.textContent('.vqsa-status'), /^3 proxies \(every surface found before 6\)/);
   assert.deepEqual(consoleErrors, []);
