@@ -27,6 +27,16 @@ TEST(Options, EveryDefaultIsValidAndNamesAreUnique) {
     ASSERT_EQ(schema.size(), option_schema().size());
     EXPECT_EQ(schema[0]["name"], "proxies");
     EXPECT_EQ(schema[0]["default"], "auto");
+    // A boolean's words (what <vqsa-viewer> turns attributes into) are what the core reads.
+    for (const json& entry : schema) {
+        if (entry["kind"] != "boolean") continue;
+        ASSERT_EQ(entry["words"].size(), 8u) << entry["name"];
+        for (const auto& [word, meaning] : entry["words"].items()) {
+            Options o;
+            set_option(o, entry["name"].get<std::string>(), word);
+            EXPECT_EQ(options_to_json(o)[entry["name"].get<std::string>()], meaning) << word;
+        }
+    }
 }
 
 TEST(Options, NamesAndValuesAsFrontEndsSendThem) {

@@ -20,13 +20,12 @@ const EDITS = ['split', 'merge', 'setType', 'lock', 'unlock', 'addSeed', 'undo',
 
 // An attribute's text as the option's value (the core checks the ranges). A boolean is
 // true when present without a value (<vqsa-viewer measure>); the words the core reads as
-// booleans become booleans (the settings panel shows them), any other text goes to the
-// core as it is, which rejects it with an error event naming the option.
-const BOOLEAN_WORDS = { true: true, 1: true, yes: true, on: true, false: false, 0: false, no: false, off: false };
+// booleans (the schema's `words`) become booleans (the settings panel shows them), any
+// other text goes to the core as it is, which rejects it with an error event naming the option.
 function parse(option, text) {
   if (option.kind === 'boolean') {
     const word = text.trim().toLowerCase();
-    return word === '' ? true : Object.hasOwn(BOOLEAN_WORDS, word) ? BOOLEAN_WORDS[word] : text;
+    return word === '' ? true : Object.hasOwn(option.words, word) ? option.words[word] : text;
   }
   if (option.kind === 'choice' || (option.kind === 'count' && text.trim() === 'auto')) return text.trim();
   return text.trim() === '' ? NaN : Number(text);

@@ -330,7 +330,7 @@ void Lloyd::decide() {
         std::find(repair_states_.begin(), repair_states_.end(), state) == repair_states_.end()) {
         const Stuck found = find_stuck();
         if (found.region >= 0 && (best_before_repair_.labels.empty() || energy_ < best_before_repair_.energy))
-            best_before_repair_ = {labels_, errors_, proxies_, energy_};
+            best_before_repair_ = {labels_, proxies_, energy_};
         if (found.region >= 0 && repair(found)) {
             --repairs_left_;
             repair_states_.push_back(state);
@@ -373,10 +373,8 @@ void Lloyd::judge_teleport() {
 
 void Lloyd::restore(const Snapshot& snapshot) {
     labels_ = snapshot.labels;
-    errors_ = snapshot.errors;
     proxies_ = snapshot.proxies;
-    energy_ = snapshot.energy;
-    evaluate();
+    evaluate();  // every face's error and the energy, as they were
 }
 
 void Lloyd::decide_at_target() {
@@ -389,7 +387,7 @@ void Lloyd::decide_at_target() {
         return start_operation(Operation::teleport);
     }
     if (teleports_left_ > 0) {
-        snapshot_ = {labels_, errors_, proxies_, energy_};
+        snapshot_ = {labels_, proxies_, energy_};
         if (insert_farthest(1) == 1) {
             --teleports_left_;
             teleport_pending_ = true;
@@ -1062,11 +1060,11 @@ std::vector<int> Lloyd::merge_regions(const std::vector<std::pair<int, int>>& me
     }
     for (int& l : labels_) l = index[into[l] >= 0 ? into[l] : l];
     for (int r = 0; r < count; ++r)
-        if (index[r] >= 0 && index[r] != r) proxies_[index[r]] = proxies_[r], region_noise_[index[r]] = region_noise_[r];
+        if (index[r] >= 0 && index[r] != r) proxies_[index[r]] = proxies_[r];
     proxies_.resize(kept);
-    region_noise_.resize(kept);
     // The other regions kept their faces and quadrics, so their errors stand (a run of
-    // merges at the end costs one pass over the faces each, not one evaluation of all).
+    // merges at the end costs one pass over the faces each, not one evaluation of all);
+    // region_noise_ is summed anew.
     evaluate(&changed);
     return index;
 }

@@ -163,9 +163,9 @@ public:
     const LloydOptions& options() const { return options_; }
 
 private:
+    // A partition to go back to (its errors are recomputed from labels and quadrics).
     struct Snapshot {
         std::vector<int> labels;
-        std::vector<double> errors;
         std::vector<Proxy> proxies;
         double energy = 0;
     };

@@ -82,6 +82,10 @@ std::string describe(const OptionSpec& spec) {
     return "";
 }
 
+// The words a boolean option reads (from the CLI's JSON, an element's attribute).
+const std::pair<const char*, bool> boolean_words[] = {{"true", true},  {"1", true},  {"yes", true}, {"on", true},
+                                                      {"false", false}, {"0", false}, {"no", false}, {"off", false}};
+
 // The value checked against the spec and normalised: a number, a bool, or (count) "auto".
 json normalised(const OptionSpec& spec, const json& value) {
     auto fail = [&]() -> json {
@@ -90,11 +94,9 @@ json normalised(const OptionSpec& spec, const json& value) {
     if (spec.kind == OptionKind::boolean) {
         if (value.is_boolean()) return value;
         if (value.is_number() && (value == 0 || value == 1)) return json(value == 1);
-        if (value.is_string()) {
-            const std::string t = value.get<std::string>();
-            if (t == "true" || t == "1" || t == "yes" || t == "on") return json(true);
-            if (t == "false" || t == "0" || t == "no" || t == "off") return json(false);
-        }
+        if (value.is_string())
+            for (const auto& [word, meaning] : boolean_words)
+                if (value.get<std::string>() == word) return json(meaning);
         return fail();
     }
     if (spec.kind == OptionKind::choice) {
@@ -191,6 +193,8 @@ json schema_to_json() {
             entry["max"] = spec.max;
         }
         if (spec.kind == OptionKind::choice) entry["choices"] = spec.choices;
+        if (spec.kind == OptionKind::boolean)
+            for (const auto& [word, meaning] : boolean_words) entry["words"][word] = meaning;
         if (spec.typical_when_on != 0) entry["typicalWhenOn"] = spec.typical_when_on;
         out.push_back(entry);
     }
