@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -213,6 +214,36 @@ TEST(CadExtraction, SharedCadMeshesWithTheAutomaticCountHaveNoTwoPartRegion) {
         EXPECT_EQ(two_part_regions(mesh, r), 0);
         EXPECT_TRUE(r.stop_reason == StopReason::fitted || r.stop_reason == StopReason::no_gain);
     }
+}
+
+TEST(CadExtraction, CrossingHolesStayTwoRegionsWithTheAutomaticCount) {
+    // block.off's two holes, along x and along y, cross: their cylinders meet along curves
+    // where an ellipsoid passes within the coarse tessellation's noise of both, and the
+    // finishing merges used to join pieces of the two holes, after which that quadric took
+    // both (one region of RMS 0.9 on a 38-unit part). A merge is now undone when, Lloyd
+    // settled, it leaves more error unexplained than the noise it was allowed.
+    const Mesh mesh = read_mesh_file(test::shared_mesh("block.off"));
+    const Result r = test::approximate(mesh, counted(0));
+    // A hole's faces face across its axis: normal ⊥ the axis, off the two other axes.
+    std::vector<std::array<double, 2>> hole_area(r.proxies.size(), {0, 0});
+    std::array<double, 2> total{0, 0};
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+        const Triangle& t = mesh.triangles[f];
+        const Vec3 c = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+        const Vec3 n = c.normalized();
+        for (int axis : {0, 1}) {
+            const int other = 1 - axis;
+            if (std::abs(n[axis]) < 0.05 && std::abs(n[other]) > 0.1 && std::abs(n[2]) > 0.1) {
+                hole_area[r.face_labels[f]][axis] += c.norm() / 2;
+                total[axis] += c.norm() / 2;
+            }
+        }
+    }
+    ASSERT_GT(total[0], 0);
+    ASSERT_GT(total[1], 0);
+    for (std::size_t i = 0; i < r.proxies.size(); ++i)
+        EXPECT_LT(std::min(hole_area[i][0] / total[0], hole_area[i][1] / total[1]), 0.05)
+            << "region " << i << " spans both holes";
 }
 
 TEST(CadExtraction, TheSeedPicksSeedFacesAndTheSameSeedGivesTheSameLabels) {

@@ -433,7 +433,21 @@ void Lloyd::finish() {
     // regions of a handful of faces (too few to tell a surface) into a neighbour; at a
     // count the user chose, only slivers and pieces of one exact surface.
     if (automatic()) {
-        if (merge_same_surface() || merge_handful()) return start_operation(Operation::merge);
+        // A same-surface merge is judged once Lloyd has settled around it: the union may
+        // use up the noise of its two regions, no more (two holes crossing each other
+        // meet along curves where one quadric passes near both, within a coarse
+        // tessellation's noise, and that quadric then takes both holes).
+        undo_unpaid_merge();
+        PendingMerge pending{{labels_, proxies_, energy_}, partition_hash()};
+        const double unexplained_before = unexplained() + options_.convergence * energy_;
+        const std::vector<double> noise = region_noise_;
+        if (merge_same_surface(true, &pending.pair)) {
+            const auto [a, b] = pending.pair;
+            pending.allowed = unexplained_before + options_.noise_factor * options_.noise_factor * (noise[a] + noise[b]);
+            pending_merge_ = std::move(pending);
+            return start_operation(Operation::merge);
+        }
+        if (merge_handful()) return start_operation(Operation::merge);
     } else if (merge_at_count()) {
         return start_operation(Operation::merge);
     }
@@ -468,6 +482,22 @@ std::uint64_t Lloyd::partition_hash() const {
 
 double Lloyd::noise_energy(int proxy) const {
     return options_.noise_factor * options_.noise_factor * region_noise_[proxy];
+}
+
+double Lloyd::unexplained() const {
+    double sum = 0;
+    for (int i = 0; i < static_cast<int>(proxies_.size()); ++i)
+        sum += std::max(0.0, proxies_[i].error - std::max(noise_energy(i), proxies_[i].area * options_.precision * options_.precision));
+    return sum;
+}
+
+bool Lloyd::undo_unpaid_merge() {
+    PendingMerge pending = std::move(pending_merge_);
+    pending_merge_ = {};
+    if (pending.pair.first < 0 || unexplained() <= pending.allowed) return false;
+    restore(pending.before);
+    rejected_merges_.push_back({pending.state, pending.pair});
+    return true;
 }
 
 bool Lloyd::explained(int proxy) const {
@@ -784,7 +814,7 @@ bool Lloyd::merge_cheapest() {
     });
 }
 
-bool Lloyd::merge_same_surface(bool within_noise) {
+bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
     // Two regions lie on one surface when the union's fit explains each of them about as
     // well as its own fit does (within a quarter), or (`within_noise`) within the noise of
     // its faces; otherwise the union must also be within `precision` (an exact surface,
@@ -814,9 +844,13 @@ bool Lloyd::merge_same_surface(bool within_noise) {
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
     });
+    const std::uint64_t state = rejected_merges_.empty() ? 0 : partition_hash();
     for (const Candidate& c : candidates) {
         const auto [i, j] = pairs[c.pair];
+        const std::pair<std::uint64_t, std::pair<int, int>> merge{state, pairs[c.pair]};
+        if (std::find(rejected_merges_.begin(), rejected_merges_.end(), merge) != rejected_merges_.end()) continue;
         if (!one_surface(c.fit.quadric, i, j, faces)) continue;
+        if (merged) *merged = pairs[c.pair];
         merge_pair(i, j, c.fit);
         return true;
     }

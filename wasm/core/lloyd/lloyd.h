@@ -237,7 +237,14 @@ private:
     // Adjacent regions on one surface (their union fits as well as they do apart, or, when
     // `within_noise`, within their noise). At a count the user chose, only the former, and
     // within `precision`: the noise must not take away a face it blurs (a thin plate's side).
-    bool merge_same_surface(bool within_noise = true);
+    // `merged`, if given, receives the pair merged. Pairs rejected from this very partition
+    // (rejected_merges_) are not merged again.
+    bool merge_same_surface(bool within_noise = true, std::pair<int, int>* merged = nullptr);
+    // Σ over regions of the error neither the noise nor `precision` explains.
+    double unexplained() const;
+    // Undoes the last finishing merge if, Lloyd settled, it left more error unexplained
+    // than the noise it was allowed: whether it did.
+    bool undo_unpaid_merge();
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
     bool merge_handful();
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
@@ -318,6 +325,15 @@ private:
     int inserted_ = 0;
     int unpaid_ = 0;  // insertions in a row that did not pay
     StopReason finish_reason_ = StopReason::none;
+    // The last finishing merge (automatic count), until it is judged.
+    struct PendingMerge {
+        Snapshot before;
+        std::uint64_t state = 0;  // partition_hash() of `before`
+        std::pair<int, int> pair{-1, -1};
+        double allowed = 0;  // unexplained() before it, plus the pair's noise
+    };
+    PendingMerge pending_merge_;
+    std::vector<std::pair<std::uint64_t, std::pair<int, int>>> rejected_merges_;
     Snapshot snapshot_;
     Operation last_operation_ = Operation::initialize;
     StopReason stop_reason_ = StopReason::none;
