@@ -484,10 +484,13 @@ double Lloyd::noise_energy(int proxy) const {
     return options_.noise_factor * options_.noise_factor * region_noise_[proxy];
 }
 
+double Lloyd::allowance(int proxy) const {
+    return std::max(noise_energy(proxy), proxies_[proxy].area * options_.precision * options_.precision);
+}
+
 double Lloyd::unexplained() const {
     double sum = 0;
-    for (int i = 0; i < static_cast<int>(proxies_.size()); ++i)
-        sum += std::max(0.0, proxies_[i].error - std::max(noise_energy(i), proxies_[i].area * options_.precision * options_.precision));
+    for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) sum += std::max(0.0, proxies_[i].error - allowance(i));
     return sum;
 }
 
@@ -500,10 +503,7 @@ bool Lloyd::undo_unpaid_merge() {
     return true;
 }
 
-bool Lloyd::explained(int proxy) const {
-    const Proxy& p = proxies_[proxy];
-    return p.error <= noise_energy(proxy) || p.error <= p.area * options_.precision * options_.precision;
-}
+bool Lloyd::explained(int proxy) const { return proxies_[proxy].error <= allowance(proxy); }
 
 std::vector<int> Lloyd::misfit_charts() const {
     if (options_.init != Initialization::features) return {};
@@ -1030,9 +1030,7 @@ Lloyd::Stuck Lloyd::find_stuck() const {
     double worst_excess = 0;
     const int handful = std::max(4, model_.face_count() / 1000);
     for (int i = 0; i < count; ++i) {
-        const Proxy& p = proxies_[i];
-        const double floor = p.area * options_.precision * options_.precision;
-        const double excess = p.error - std::max(noise_energy(i), automatic() ? floor : 0.0);
+        const double excess = proxies_[i].error - (automatic() ? allowance(i) : noise_energy(i));
         if (excess > worst_excess) worst_excess = excess, worst = i;
     }
     if (worst < 0) return {};

@@ -240,7 +240,10 @@ private:
     // `merged`, if given, receives the pair merged. Pairs rejected from this very partition
     // (rejected_merges_) are not merged again.
     bool merge_same_surface(bool within_noise = true, std::pair<int, int>* merged = nullptr);
-    // Σ over regions of the error neither the noise nor `precision` explains.
+    // The error a region may carry and be explained: its noise_energy, or its area times
+    // `precision`², whichever is larger.
+    double allowance(int proxy) const;
+    // Σ over regions of the error beyond their allowance.
     double unexplained() const;
     // Undoes the last finishing merge if, Lloyd settled, it left more error unexplained
     // than the noise it was allowed: whether it did.
