@@ -1030,7 +1030,7 @@ Lloyd::Stuck Lloyd::find_stuck() const {
     double worst_excess = 0;
     const int handful = std::max(4, model_.face_count() / 1000);
     for (int i = 0; i < count; ++i) {
-        const double excess = proxies_[i].error - (automatic() ? allowance(i) : noise_energy(i));
+        const double excess = proxies_[i].error - noise_energy(i);
         if (excess > worst_excess) worst_excess = excess, worst = i;
     }
     if (worst < 0) return {};
