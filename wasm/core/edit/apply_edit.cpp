@@ -2,6 +2,7 @@
 
 #include "fitting/face_errors.h"
 #include "fitting/samples.h"
+#include "lloyd/lloyd.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -10,13 +11,6 @@
 namespace vqsa {
 
 namespace {
-
-std::vector<int> faces_of(const std::vector<int>& labels, int region) {
-    std::vector<int> out;
-    for (int f = 0; f < static_cast<int>(labels.size()); ++f)
-        if (labels[f] == region) out.push_back(f);
-    return out;
-}
 
 // The region's face farthest from its surface (the first of equals).
 int worst_face(const Model& model, const std::vector<int>& labels, const Proxy& proxy, int region) {

@@ -1107,6 +1107,13 @@ RegionFaces Lloyd::faces_by_region() const {
     return faces;
 }
 
+std::vector<int> faces_of(const std::vector<int>& labels, int region) {
+    std::vector<int> out;
+    for (int f = 0; f < static_cast<int>(labels.size()); ++f)
+        if (labels[f] == region) out.push_back(f);
+    return out;
+}
+
 bool is_strip(const Model& model, const std::vector<int>& labels, const std::vector<int>& faces, int min_faces) {
     if (static_cast<int>(faces.size()) < min_faces) return true;
     for (int f : faces) {

@@ -118,6 +118,9 @@ double evaluate_regions(const Model& model, const std::vector<int>& labels, std:
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr,
                         const ChartFaces* charts = nullptr);
 
+// The faces labelled `region`, in increasing order.
+std::vector<int> faces_of(const std::vector<int>& labels, int region);
+
 // Whether a region (its faces, labelled in `labels`) is a strip, too thin to tell a surface
 // of its own: fewer than `min_faces` faces, or one facet wide (no face with all its
 // neighbours in it; a column of a ruled band is exactly planar, a ring of a sphere's

@@ -104,10 +104,8 @@ public:
         if (more) return true;
         local_.reset();
         const int added = static_cast<int>(state_.proxies.size()) - 1;
-        std::vector<int> added_faces;
-        for (int f = 0; f < model_.face_count(); ++f)
-            if (state_.labels[f] == added) added_faces.push_back(f);
-        if (!start_.first.empty() && is_strip(model_, state_.labels, added_faces, options_.lloyd.min_quadric_faces)) {
+        if (!start_.first.empty() &&
+            is_strip(model_, state_.labels, faces_of(state_.labels, added), options_.lloyd.min_quadric_faces)) {
             state_.labels = std::move(start_.first);
             state_.proxies = std::move(start_.second);
             start_ = {};
