@@ -494,13 +494,12 @@ double Lloyd::unexplained() const {
     return sum;
 }
 
-bool Lloyd::undo_unpaid_merge() {
+void Lloyd::undo_unpaid_merge() {
     PendingMerge pending = std::move(pending_merge_);
     pending_merge_ = {};
-    if (pending.pair.first < 0 || unexplained() <= pending.allowed) return false;
+    if (pending.pair.first < 0 || unexplained() <= pending.allowed) return;
     restore(pending.before);
     rejected_merges_.push_back({pending.state, pending.pair});
-    return true;
 }
 
 bool Lloyd::explained(int proxy) const { return proxies_[proxy].error <= allowance(proxy); }

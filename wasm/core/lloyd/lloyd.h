@@ -249,8 +249,8 @@ private:
     // Σ over regions of the error beyond their allowance.
     double unexplained() const;
     // Undoes the last finishing merge if, Lloyd settled, it left more error unexplained
-    // than the noise it was allowed: whether it did.
-    bool undo_unpaid_merge();
+    // than the noise it was allowed.
+    void undo_unpaid_merge();
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
     bool merge_handful();
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
