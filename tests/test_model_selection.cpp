@@ -2,12 +2,15 @@
 // keeps its type, clean and with noise, and the special types give their parameters.
 #include "fitting/fit.h"
 #include "fitting/model_selection.h"
+#include "geometry/model.h"
 #include "geometry/moments.h"
 #include "shapes.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -135,4 +138,56 @@ TEST(ModelSelection, APlanePairIsNeverChosen) {
     const ModelChoice choice = select_model(samples, pair);
     EXPECT_FALSE(has_two_parts(choice.chosen.type)) << type_name(choice.chosen.type);
     EXPECT_TRUE(choice.chosen.special);
+}
+
+// A coarse tessellation stands for its surface only to within its facets' sagitta: a
+// pattern of vertex deviations below that (block.off's holes have their vertices pulled
+// towards the axis by up to the sagitta) is no evidence for a more general quadric, while
+// a true difference well above it still is.
+TEST(ModelSelection, DeviationsBelowTheTessellationsSagittaAreNoEvidence) {
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    const double step = M_PI / 19, sagitta = 1 - std::cos(step / 2);  // 19 facets over half a unit circle
+    const Eigen::Matrix3d R = test::random_rotation(rng);
+    // Semi-axes 1 and b across the axis; vertices pulled inwards by `pull`(angle) × sagitta.
+    auto half_cylinder = [&](double b, const std::function<double(double, double)>& pull) {
+        Shape shape = make_grid(
+            [&](double u, double v) {
+                const double r = 1 - pull(u, v) * sagitta;
+                return Vec3(r * std::cos(u), r * b * std::sin(u), v);
+            },
+            0, M_PI, 0, 3, 19, 20);
+        transform(shape.mesh, R, Vec3(1, -2, 0.5));
+        return make_model(shape.mesh);
+    };
+    auto choose = [](const Model& model, bool with_tolerance) {
+        std::vector<int> faces(model.face_count());
+        std::iota(faces.begin(), faces.end(), 0);
+        Samples samples = region_samples(model, faces);
+        if (!with_tolerance) samples.tolerance = 0;
+        return select_model(samples, fit_region(moments_of(model, faces)).quadric);
+    };
+    const Model exact = half_cylinder(1, [](double, double) { return 0.0; });
+    const double unit = (exact.points[1] - exact.points[0]).norm() / 3.0 * 20;  // model units per input unit
+    std::vector<int> all_faces(exact.face_count());
+    std::iota(all_faces.begin(), all_faces.end(), 0);
+    EXPECT_NEAR(region_samples(exact, all_faces).tolerance / unit, sagitta, 0.02 * sagitta);
+
+    const Model pulled = half_cylinder(1, [&](double, double v) {
+        return 0.3 + 0.6 * 4 * (v / 3) * (1 - v / 3) + 0.05 * uniform(rng);  // a waist, and a little noise
+    });
+    const ModelChoice with = choose(pulled, true), without = choose(pulled, false);
+    EXPECT_STREQ(type_name(with.chosen.type), "cylinder");
+    EXPECT_TRUE(with.chosen.special);
+    EXPECT_NEAR(with.chosen.shape.radius / unit, 1 - 0.7 * sagitta, 0.3 * sagitta);
+    EXPECT_STRNE(type_name(without.chosen.type), "cylinder") << "the pattern must be one a quadric absorbs";
+
+    const ModelChoice elliptic = choose(half_cylinder(0.9, [](double, double) { return 0.0; }), true);
+    EXPECT_STREQ(type_name(elliptic.chosen.type), "elliptic_cylinder");
+
+    const Shape flat = make_grid([](double u, double v) { return Vec3(u, v, 0); }, 0, 1, 0, 1, 10, 10);
+    const Model plane = make_model(flat.mesh);
+    std::vector<int> all(plane.face_count());
+    std::iota(all.begin(), all.end(), 0);
+    EXPECT_EQ(region_samples(plane, all).tolerance, 0);
 }

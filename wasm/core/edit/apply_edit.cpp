@@ -123,7 +123,7 @@ std::vector<char> apply_edit(const Model& model, const LloydOptions& options, co
             selection.imposed = e.type;
             if (e.type != ImposedType::none) {
                 try {
-                    select_model(vertex_samples(model.points, model.triangles, faces_of(s.labels, e.region)),
+                    select_model(region_samples(model, faces_of(s.labels, e.region)),
                                  s.proxies[e.region].quadric, selection);
                 } catch (const std::invalid_argument&) {
                     throw std::invalid_argument(std::string("no ") + imposed_type_name(e.type) + " fits " +

@@ -129,7 +129,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     }
 
     const double n = static_cast<double>(s.points.size());
-    const double floor2 = (options.floor * radius) * (options.floor * radius);
+    const double floor2 = (options.floor * radius) * (options.floor * radius) + s.tolerance * s.tolerance;
     for (TypedFit& c : candidates) c.bic = n * std::log(c.rms * c.rms + floor2) + c.parameters * std::log(n);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
     const auto chosen = std::find_if(candidates.begin(), candidates.end(),

@@ -46,13 +46,16 @@ struct ModelSelectionOptions {
 };
 
 // `vertices`: each vertex of the region once (the vertices of a CAD tessellation lie on
-// the surface; the barycentres do not), of equal weights under noise per vertex. `general`: the region's quadric. Candidates: plane (3 parameters),
-// sphere (4), circular cylinder (5), circular cone (6), elliptic paraboloid (8) and the
-// general quadric with its affine type (its degrees of freedom, 6 to 9) — unless it has two parts with vertices on
+// the surface; the barycentres do not), of equal weights under noise per vertex.
+// `general`: the region's quadric. Candidates: plane (3 parameters), sphere (4), circular
+// cylinder (5), circular cone (6), elliptic paraboloid (8) and the general quadric with its
+// affine type (its degrees of freedom, 6 to 9) — unless it has two parts with vertices on
 // both, or is a pair of planes (one of them is the plane candidate). The chosen one
-// minimises n ln(MSE + floor²) + k ln(n), n the number of vertices. With a type imposed,
-// the best candidate of that type is chosen; std::invalid_argument when none could be
-// fitted (a sphere through a flat region).
+// minimises n ln(MSE + floor² + tolerance²) + k ln(n), n the number of vertices, the
+// tolerance the samples' own (region_samples: the tessellation's chordal deviation, below
+// which a closer fit is no evidence). With a type imposed, the best candidate of that type
+// is chosen; std::invalid_argument when none could be fitted (a sphere through a flat
+// region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
 
 }  // namespace vqsa

@@ -1,6 +1,7 @@
 #include "fitting/samples.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace vqsa {
 
@@ -14,6 +15,29 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
     Samples out;
     for (int v : vertices) out.add(points[v], 1.0);
+    return out;
+}
+
+Samples region_samples(const Model& model, const std::vector<int>& faces) {
+    Samples out = vertex_samples(model.points, model.triangles, faces);
+    std::vector<int> sorted(faces);
+    if (!std::is_sorted(sorted.begin(), sorted.end())) std::sort(sorted.begin(), sorted.end());
+    const DualGraph& g = model.graph;
+    // A median needs no more than a thousand faces, evenly strided.
+    const std::size_t stride = sorted.size() / 1024 + 1;
+    std::vector<double> deviation;
+    deviation.reserve(sorted.size() / stride + 1);
+    for (std::size_t i = 0; i < sorted.size(); i += stride) {
+        const int f = sorted[i];
+        double largest = 0;
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            if (std::binary_search(sorted.begin(), sorted.end(), g.neighbor[e])) largest = std::max(largest, g.sagitta[e]);
+        deviation.push_back(largest);
+    }
+    if (deviation.empty()) return out;
+    const auto middle = deviation.begin() + deviation.size() / 2;
+    std::nth_element(deviation.begin(), middle, deviation.end());
+    out.tolerance = *middle;
     return out;
 }
 

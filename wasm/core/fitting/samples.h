@@ -1,6 +1,7 @@
 // Weighted points standing for a region, for the orthogonal-distance fits.
 #pragma once
 
+#include "geometry/model.h"
 #include "io/mesh.h"
 
 #include <cmath>
@@ -15,6 +16,9 @@ struct Samples {
     std::vector<Vec3> points;
     std::vector<double> weights;
     double total_weight = 0;
+    // How far the points may stray from their surface without telling anything about it:
+    // a tessellation's own chordal deviation (region_samples); 0 for exact data.
+    double tolerance = 0;
     void add(const Vec3& p, double w) {
         points.push_back(p);
         weights.push_back(w);
@@ -26,6 +30,13 @@ struct Samples {
 // measurement, whatever the size of its faces (what model selection fits).
 Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
                        const std::vector<int>& faces);
+
+// vertex_samples of a region of the model, with the tessellation's chordal deviation there
+// as the tolerance: per face, the largest sagitta (DualGraph) across its edges inside the
+// region (a tessellated cylinder turns across one edge of each face); the median of
+// those over the region's faces (a crease or a few noisy faces do not make it), at most
+// a thousand of them evenly strided.
+Samples region_samples(const Model& model, const std::vector<int>& faces);
 
 inline Vec3 weighted_centroid(const Samples& s) {
     Vec3 c = Vec3::Zero();

@@ -1,6 +1,7 @@
 #include "geometry/model.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace vqsa {
@@ -109,6 +110,22 @@ Model make_model(const Mesh& mesh) {
         model.total_area += model.areas[f];
     }
     model.graph = dual_graph(model.triangles, model.points);
+    std::vector<Vec3> normal(n);
+    for (std::size_t f = 0; f < n; ++f) {
+        const Triangle& t = model.triangles[f];
+        normal[f] = (model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]).normalized();
+    }
+    DualGraph& g = model.graph;
+    g.sagitta.resize(g.neighbor.size());
+    for (std::size_t f = 0; f < n; ++f)
+        for (int e = g.begin(static_cast<int>(f)); e < g.end(static_cast<int>(f)); ++e) {
+            const int h = g.neighbor[e];
+            // The chord between the unit normals, 2 sin(θ/2): θ to within θ³/24 at the small
+            // angles that matter, and no libm call (whose last bits differ in WASM).
+            const double turn = std::min((normal[f] - normal[h]).norm(), (normal[f] + normal[h]).norm());
+            const double heights = 2 * (model.areas[f] + model.areas[h]) / g.edge_length[e];
+            g.sagitta[e] = std::isfinite(turn * heights) ? turn * heights / 16 : 0;
+        }
     model.component_count = label_components(model.graph, model.component);
     return model;
 }

@@ -15,6 +15,11 @@ struct DualGraph {
     std::vector<int> start;         // neighbours of face f: neighbor[start[f] .. start[f+1])
     std::vector<int> neighbor;
     std::vector<double> edge_length;  // length of the shared edge, unit frame
+    // The sagitta a curve through both faces would have over their mean height above the
+    // shared edge: θ(h₁ + h₂)/16 for faces turning by θ (orientation aside) over heights
+    // h₁, h₂, the curve's curvature being 2θ/(h₁ + h₂). A tessellation's chordal deviation
+    // across the edge, or twice the noise's effect on it (region_samples).
+    std::vector<double> sagitta;
 
     int begin(int f) const { return start[f]; }
     int end(int f) const { return start[f + 1]; }

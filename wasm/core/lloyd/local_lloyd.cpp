@@ -32,7 +32,7 @@ void LocalLloyd::refit() {
         selection.imposed = imposed_[i];
         try {
             proxies_[i].quadric =
-                select_model(vertex_samples(model_.points, model_.triangles, faces[i]), proxies_[i].quadric, selection)
+                select_model(region_samples(model_, faces[i]), proxies_[i].quadric, selection)
                     .chosen.quadric;
         } catch (const std::invalid_argument&) {
             // The region's faces no longer admit the type (too few, or degenerate): it keeps

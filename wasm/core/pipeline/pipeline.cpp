@@ -208,7 +208,7 @@ public:
         while (next_ < count && !refitted(next_)) ++next_;
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            const Samples vertices = vertex_samples(model_.points, model_.triangles, region_faces_[next_]);
+            const Samples vertices = region_samples(model_, region_faces_[next_]);
             ModelSelectionOptions selection = seams_.selection;
             selection.imposed = imposed(next_);
             try {

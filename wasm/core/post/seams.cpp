@@ -52,7 +52,7 @@ void SeamSimplifier::simplify(int a) {
     // seams of a free-form surface change no type, and this tells them cheaply.
     auto select_without = [&](int r, const std::vector<int>& strip) {
         const std::vector<int> rest = faces_without(r, strip);
-        return select_model(thinned(vertex_samples(model_.points, model_.triangles, rest), options_.screening_samples),
+        return select_model(thinned(region_samples(model_, rest), options_.screening_samples),
                             fit_region(moments_of(model_, rest), options_.fit).quadric, options_.selection);
     };
     auto may_change = [&](int r) { return !may_change_ || (*may_change_)[r]; };
@@ -104,14 +104,14 @@ void SeamSimplifier::simplify(int a) {
         if (rest.size() < 3) continue;
         const Moments rest_moments = moments_of(model_, rest);
         const ModelChoice simpler =
-            select_model(vertex_samples(model_.points, model_.triangles, rest), fit_region(rest_moments, options_.fit).quadric, options_.selection);
+            select_model(region_samples(model_, rest), fit_region(rest_moments, options_.fit).quadric, options_.selection);
         if (simpler.chosen.parameters >= choices_[a].chosen.parameters) continue;
         std::vector<int> grown = regions_[b].faces;
         grown.insert(grown.end(), strip.begin(), strip.end());
         Moments grown_moments = proxies_[b].moments;
         for (int f : strip) add_to(grown_moments, model_.moments[f]);
         const ModelChoice kept =
-            select_model(vertex_samples(model_.points, model_.triangles, grown), fit_region(grown_moments, options_.fit).quadric, options_.selection);
+            select_model(region_samples(model_, grown), fit_region(grown_moments, options_.fit).quadric, options_.selection);
         if (kept.chosen.type != choices_[b].chosen.type) continue;
 
         for (int f : strip) labels_[f] = b;
