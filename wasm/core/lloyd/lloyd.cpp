@@ -504,8 +504,7 @@ void Lloyd::undo_unpaid_merge() {
 
 bool Lloyd::explained(int proxy) const { return proxies_[proxy].error <= allowance(proxy); }
 
-std::vector<int> Lloyd::misfit_charts() const {
-    if (options_.init != Initialization::features) return {};
+std::vector<char> Lloyd::owned_charts() const {
     // A chart is owned by a proxy seeded in it whose region holds at least half of it.
     std::vector<double> chart_area(features_.chart_count, 0), owned_area(features_.chart_count, 0);
     std::vector<int> seeded_by(proxies_.size(), -1);
@@ -515,8 +514,14 @@ std::vector<int> Lloyd::misfit_charts() const {
         chart_area[features_.chart[f]] += model_.areas[f];
         if (seeded_by[labels_[f]] == features_.chart[f]) owned_area[features_.chart[f]] += model_.areas[f];
     }
-    std::vector<char> seeded(features_.chart_count, 0);
-    for (int c = 0; c < features_.chart_count; ++c) seeded[c] = 2 * owned_area[c] >= chart_area[c];
+    std::vector<char> owned(features_.chart_count, 0);
+    for (int c = 0; c < features_.chart_count; ++c) owned[c] = 2 * owned_area[c] >= chart_area[c];
+    return owned;
+}
+
+std::vector<int> Lloyd::misfit_charts() const {
+    if (options_.init != Initialization::features) return {};
+    const std::vector<char> seeded = owned_charts();
     // Across the creases around a chart, within one region: how far that region's quadric
     // turns. A surface that turns through a crease (by half its angle and more, within an
     // edge) is fitting two faces, however small its error.
@@ -1032,7 +1037,21 @@ Lloyd::Stuck Lloyd::find_stuck() const {
         const double excess = proxies_[i].error - noise_energy(i);
         if (excess > worst_excess) worst_excess = excess, worst = i;
     }
-    if (worst < 0) return {};
+    // Every region within its noise, a proxy of a handful of faces still explains nothing
+    // that a chart no proxy owns would not explain better (two sides of a noisy block taken
+    // by one elliptic cone within σ of both: no error tells, the charts do). The
+    // repair is judged by the energy it buys, as any other.
+    int chart = -1;
+    if (worst < 0 && options_.init == Initialization::features) {
+        const std::vector<char> owned = owned_charts();
+        for (int c = 0; c < features_.chart_count; ++c) {
+            if (owned[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
+            double error = 0;
+            for (int f : chart_faces_[c]) error += errors_[f];
+            if (error > worst_excess) worst_excess = error, chart = c;
+        }
+    }
+    if (worst < 0 && chart < 0) return {};
     for (int i = 0; i < count; ++i) {
         const Proxy& p = proxies_[i];
         if (i == worst || p.faces > handful) continue;
@@ -1040,7 +1059,7 @@ Lloyd::Stuck Lloyd::find_stuck() const {
         // far below what the worst region leaves unexplained.
         if (p.error + noise_energy(i) < 0.1 * worst_excess && (stuck < 0 || p.area < proxies_[stuck].area)) stuck = i;
     }
-    return stuck < 0 ? Stuck{} : Stuck{stuck, worst};
+    return stuck < 0 ? Stuck{} : Stuck{stuck, worst, chart};
 }
 
 bool Lloyd::repair(const Stuck& found) {
@@ -1056,8 +1075,9 @@ bool Lloyd::repair(const Stuck& found) {
     const int into = static_cast<int>(std::max_element(shared.begin(), shared.end()) - shared.begin());
     if (shared[into] == 0) return false;  // alone in its component: it must stay
     const Union united = fit_union(into, stuck);
-    const int worst_after = worst > stuck ? worst - 1 : worst;
     merge_pair(into, stuck, united.fit);
+    if (found.chart >= 0) return seed_at_random(chart_faces_[found.chart]);
+    const int worst_after = worst > stuck ? worst - 1 : worst;
     const double error = proxies_[worst_after].error;
     proxies_[worst_after].error = std::numeric_limits<double>::infinity();  // the one region insert_farthest takes
     const int added = insert_farthest(1);

@@ -196,6 +196,8 @@ private:
     // Σ A (noise_factor · roughness)² over a region: the energy the noise explains.
     double noise_energy(int proxy) const;
     bool explained(int proxy) const;
+    // Per chart: whether a proxy seeded in it holds at least half of it.
+    std::vector<char> owned_charts() const;
     // Charts without a seed whose faces fit worse than the noise explains, worst first.
     std::vector<int> misfit_charts() const;
     int insert_into_charts(int count);
@@ -277,12 +279,13 @@ private:
     // them (by half the crease angle or more, on half of them): it would be fitting two faces.
     bool bends_through_creases(const Quadric& q, const std::vector<int>& a, int b) const;
     // A region of a handful of faces that explains nothing, while another (`worst`) has
-    // errors the noise does not explain (region -1: none).
+    // errors the noise does not explain or, every region within its noise, while a chart
+    // no proxy owns (`chart`, worst -1) holds far more error (region -1: none).
     struct Stuck {
-        int region = -1, worst = -1;
+        int region = -1, worst = -1, chart = -1;
     };
     Stuck find_stuck() const;
-    // Merges the stuck region away and reinserts its proxy in the worst region.
+    // Merges the stuck region away and reinserts its proxy in the worst region, or in the chart.
     bool repair(const Stuck& stuck);
     // Region `gone` into region `keep`, of quadric `fit`; returns keep's index after the removal.
     int merge_pair(int keep, int gone, const Fit& fit);
