@@ -103,8 +103,10 @@ double evaluate_regions(const Model& model, const std::vector<int>& labels, std:
             present.clear();
         }
     }
+    // A face creased all round (a fold-over, a spike's tip) is no seed: a tiny one has the
+    // least error of its region, and the region, flooded from it, would shrink to it.
     std::vector<double> best(proxies.size(), std::numeric_limits<double>::infinity());
-    std::vector<char> anchored(proxies.size(), 0);  // the current seed lies in the anchor chart
+    std::vector<int> rank(proxies.size(), -1);  // of the current seed: 2 in the anchor chart + 1 seedable
     for (Proxy& p : proxies) p.error = 0, p.seed = -1;
     errors.resize(model.face_count());
     double energy = 0;
@@ -116,9 +118,8 @@ double evaluate_regions(const Model& model, const std::vector<int>& labels, std:
         errors[f] = e;
         proxies[l].error += e;
         energy += e;
-        const bool in_anchor = anchor[l] >= 0 && (*chart)[f] == anchor[l];
-        if (in_anchor && !anchored[l]) best[l] = e, proxies[l].seed = f, anchored[l] = 1;
-        else if (in_anchor == bool(anchored[l]) && e < best[l]) best[l] = e, proxies[l].seed = f;
+        const int r = charts ? 2 * (anchor[l] >= 0 && (*chart)[f] == anchor[l]) + charts->seedable[f] : 0;
+        if (r > rank[l] || (r == rank[l] && e < best[l])) best[l] = e, proxies[l].seed = f, rank[l] = r;
     }
     return energy;
 }
@@ -153,6 +154,10 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     features_ = detect_features(model_, features);
     chart_faces_.resize(features_.chart_count);
     for (int f = 0; f < model_.face_count(); ++f) chart_faces_[features_.chart[f]].push_back(f);
+    const DualGraph& g = model_.graph;
+    seedable_.assign(model_.face_count(), 0);
+    for (int f = 0; f < model_.face_count(); ++f)
+        for (int k = g.begin(f); k < g.end(f) && !seedable_[f]; ++k) seedable_[f] = !features_.crease[k];
     // Each chart's error under its own fit, what a proxy of its own would leave.
     chart_error_.assign(features_.chart_count, 0.0);
     FaceErrors own;
@@ -278,7 +283,7 @@ void Lloyd::iterate() {
 }
 
 void Lloyd::evaluate(const std::vector<char>* changed) {
-    const ChartFaces charts{features_.chart, chart_faces_};
+    const ChartFaces charts{features_.chart, chart_faces_, seedable_};
     energy_ = evaluate_regions(model_, labels_, proxies_, errors_, face_errors_, changed,
                                options_.init == Initialization::features ? &charts : nullptr);
     region_noise_.assign(proxies_.size(), 0.0);
@@ -634,17 +639,19 @@ int Lloyd::insert_farthest(int count) {
         if (added == count) break;
         if (proxies_[region].faces < 2 || !(proxies_[region].error > 0)) continue;
         if (automatic() && explained(region)) continue;
-        // The worst face counted with its neighbours: a lone outlier face (a sliver, a
-        // spike) would seed a proxy that never grows.
+        // The worst face counted with its neighbours, a seedable one where there is one: a
+        // lone outlier face (a sliver, a spike, a fold-over) would seed a proxy that never
+        // grows.
         int worst = -1;
         double worst_error = -1;
+        bool worst_seedable = false;
         const DualGraph& g = model_.graph;
         for (int f = 0; f < model_.face_count(); ++f) {
-            if (labels_[f] != region || f == proxies_[region].seed) continue;
+            if (labels_[f] != region || f == proxies_[region].seed || (worst_seedable && !seedable_[f])) continue;
             double e = errors_[f];
             for (int k = g.begin(f); k < g.end(f); ++k)
                 if (labels_[g.neighbor[k]] == region) e += errors_[g.neighbor[k]];
-            if (e > worst_error) worst_error = e, worst = f;
+            if (e > worst_error || (seedable_[f] && !worst_seedable)) worst_error = e, worst = f, worst_seedable = seedable_[f];
         }
         add_proxy(worst);
         ++added;

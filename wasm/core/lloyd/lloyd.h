@@ -108,12 +108,14 @@ void refit_regions(const Model& model, const std::vector<int>& labels, const Llo
 struct ChartFaces {
     const std::vector<int>& chart;
     const std::vector<std::vector<int>>& faces;
+    // Per face: whether a flood from it can leave it (not every link a crease).
+    const std::vector<char>& seedable;
 };
 
 // d(t, P) of every face against its region's proxy into `errors`; each proxy's error and
 // seed (its face of least error; with `charts`, of least error in the chart holding most
-// of its region's area). Regions not flagged in `changed` (when given) keep the errors
-// already in `errors`. Returns the energy Σ d(t, P).
+// of its region's area, a seedable face where there is one). Regions not flagged in
+// `changed` (when given) keep the errors already in `errors`. Returns the energy Σ d(t, P).
 double evaluate_regions(const Model& model, const std::vector<int>& labels, std::vector<Proxy>& proxies,
                         std::vector<double>& errors, FaceErrors& evaluator, const std::vector<char>* changed = nullptr,
                         const ChartFaces* charts = nullptr);
@@ -303,6 +305,7 @@ private:
     LloydOptions options_;
     Features features_;
     std::vector<std::vector<int>> chart_faces_;
+    std::vector<char> seedable_;  // ChartFaces::seedable
     std::vector<double> chart_error_;  // under the chart's own fit
     std::vector<double> face_noise_;    // A roughness² per face
     std::vector<double> region_noise_;  // its sum per region, from evaluate()
