@@ -3,7 +3,7 @@
 # (about ten minutes on two cores) which writes bench/RESULTS.md and its charts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/ensure-deps.sh --wasm --cgal
+scripts/ensure-deps.sh --wasm --cgal --browser
 cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build/native -j "$(nproc)" > /dev/null
 scripts/build.sh > /dev/null
