@@ -642,16 +642,16 @@ int Lloyd::insert_farthest(int count) {
         // The worst face counted with its neighbours, a seedable one where there is one: a
         // lone outlier face (a sliver, a spike, a fold-over) would seed a proxy that never
         // grows.
-        int worst = -1;
+        int worst = -1, worst_rank = -1;  // rank: 1 seedable
         double worst_error = -1;
-        bool worst_seedable = false;
         const DualGraph& g = model_.graph;
         for (int f = 0; f < model_.face_count(); ++f) {
-            if (labels_[f] != region || f == proxies_[region].seed || (worst_seedable && !seedable_[f])) continue;
+            const int rank = seedable_[f];
+            if (labels_[f] != region || f == proxies_[region].seed || rank < worst_rank) continue;
             double e = errors_[f];
             for (int k = g.begin(f); k < g.end(f); ++k)
                 if (labels_[g.neighbor[k]] == region) e += errors_[g.neighbor[k]];
-            if (e > worst_error || (seedable_[f] && !worst_seedable)) worst_error = e, worst = f, worst_seedable = seedable_[f];
+            if (rank > worst_rank || e > worst_error) worst_error = e, worst = f, worst_rank = rank;
         }
         add_proxy(worst);
         ++added;
