@@ -828,9 +828,9 @@ bool Lloyd::merge_cheapest() {
 bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
     // Two regions lie on one surface when the union's fit explains each of them about as
     // well as its own fit does (within a quarter), or (`within_noise`) within the noise of
-    // its faces; otherwise the union must also be within `precision` (an exact surface,
-    // not one the noise blurs). Each part is judged alone, so that a small region's misfit
-    // does not hide in a large region's noise.
+    // its faces; otherwise both: as well as apart, and within `precision` (an exact surface)
+    // or within the noise (two pieces of a noisy plate's face). Each part is judged alone,
+    // so that a small region's misfit does not hide in a large region's noise.
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     const RegionFaces faces = faces_by_region();
     struct Candidate {
@@ -847,7 +847,8 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         const bool as_well_as_apart = united_error <= 1.25 * parts + 1e-12 * u.moments[0];
         const bool one = within_noise
                              ? as_well_as_apart || united_error <= noise_energy(i) + noise_energy(j)
-                             : as_well_as_apart && united_error <= u.moments[0] * options_.precision * options_.precision;
+                             : as_well_as_apart && (united_error <= u.moments[0] * options_.precision * options_.precision ||
+                                                    united_error <= noise_energy(i) + noise_energy(j));
         if (!one) continue;
         if (has_two_parts(classify_union(u).type)) continue;
         candidates.push_back({united_error - parts, static_cast<int>(k), u.fit});

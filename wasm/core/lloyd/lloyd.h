@@ -242,8 +242,9 @@ private:
     int side_of(const Quadric& q, int face, const Classification& c, double margin) const;
     double part_margin(int proxy) const;
     // Adjacent regions on one surface (their union fits as well as they do apart, or, when
-    // `within_noise`, within their noise). At a count the user chose, only the former, and
-    // within `precision`: the noise must not take away a face it blurs (a thin plate's side).
+    // `within_noise`, within their noise). At a count the user chose, both: the noise alone
+    // must not take away a face it blurs (a thin plate's side), nor fitting as well as apart
+    // join two pieces of a free-form surface (which neither precision nor noise explains).
     // `merged`, if given, receives the pair merged. Pairs rejected from this very partition
     // (rejected_merges_) are not merged again.
     bool merge_same_surface(bool within_noise = true, std::pair<int, int>* merged = nullptr);
