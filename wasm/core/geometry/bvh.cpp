@@ -114,26 +114,31 @@ TriangleTree::Hit TriangleTree::nearest(const Vec3& p, int hint) const {
     };
     double best2 = std::numeric_limits<double>::infinity();
     if (hint >= 0 && hint < static_cast<int>(slot_.size())) visit(p, slot_[hint], best2, best);
-    int stack[128];
+    // Down the nearer child at once; the farther one waits with its box distance, unless
+    // it is already beyond the best (a box at exactly the best distance may hold a tie).
+    struct Pending {
+        int node;
+        double distance2;
+    };
+    Pending stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, box_distance2(nodes_[0])};
     while (top > 0) {
-        const int index = stack[--top];
-        const Node& node = nodes_[index];
-        if (box_distance2(node) > best2) continue;
-        if (node.right < 0) {
-            for (int i = node.first; i < node.first + node.count; ++i) visit(p, i, best2, best);
-            continue;
-        }
-        const int left = index + 1, right = node.right;
-        // Visit the nearer child first.
-        const double dl = box_distance2(nodes_[left]), dr = box_distance2(nodes_[right]);
-        if (dl < dr) {
-            stack[top++] = right;
-            stack[top++] = left;
-        } else {
-            stack[top++] = left;
-            stack[top++] = right;
+        const Pending pending = stack[--top];
+        if (pending.distance2 > best2) continue;
+        for (int index = pending.node;;) {
+            const Node& node = nodes_[index];
+            if (node.right < 0) {
+                for (int i = node.first; i < node.first + node.count; ++i) visit(p, i, best2, best);
+                break;
+            }
+            const int left = index + 1, right = node.right;
+            const double dl = box_distance2(nodes_[left]), dr = box_distance2(nodes_[right]);
+            const bool left_first = dl < dr;
+            const double near = left_first ? dl : dr, far = left_first ? dr : dl;
+            if (far <= best2) stack[top++] = {left_first ? right : left, far};
+            if (near > best2) break;
+            index = left_first ? left : right;
         }
     }
     best.distance = std::sqrt(best2);
