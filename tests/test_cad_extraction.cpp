@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 using namespace vqsa;
 
@@ -42,6 +43,17 @@ Options counted(int proxies, std::uint64_t seed = 1) {
     Options o = test::with_proxies(proxies, seed);
     o.project = false;
     return o;
+}
+
+// The corpus's case of this part and variant (its own pose, noise and seed), at its true count.
+std::pair<Part, Outcome> corpus_case_at_true_count(const std::string& part_name, const std::string& variant) {
+    for (const CorpusCase& c : cad_corpus())
+        if (c.part == part_name && c.variant == variant) {
+            Part part = make_part(c.part, c.options);
+            Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed));
+            return {std::move(part), std::move(o)};
+        }
+    throw std::invalid_argument("no corpus case " + part_name + " " + variant);
 }
 
 // Accuracy ≥ 0.97 on average and ≥ 0.90 on every mesh, no two-part region.
@@ -196,22 +208,18 @@ TEST(CadExtraction, PiecesOfOneNoisyFaceMergeAtACount) {
     // noise of 40 % of the thickness, and one proxy went to a second piece of a large face
     // (accuracy 0.956). Two pieces whose union fits as well as they do apart, within the
     // noise of both, are one surface at a count too: every large face is one region.
-    for (const CorpusCase& c : cad_corpus()) {
-        if (c.part != "thin_plate" || c.variant != "noisy") continue;
-        const Part part = make_part(c.part, c.options);
-        const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed));
-        for (int face = 0; face < static_cast<int>(part.surfaces.size()); ++face) {
-            std::map<int, int> regions;  // region → triangles of this face
-            int triangles = 0;
-            for (std::size_t t = 0; t < part.face.size(); ++t)
-                if (part.face[t] == face) ++regions[o.result.face_labels[t]], ++triangles;
-            if (triangles < static_cast<int>(part.face.size()) / 4) continue;  // a side
-            int most = 0;
-            for (const auto& [region, n] : regions) most = std::max(most, n);
-            EXPECT_GE(most, 0.99 * triangles) << "face " << face << ": " << regions.size() << " regions";
-        }
-        EXPECT_GE(o.accuracy, 0.97);
+    const auto [part, o] = corpus_case_at_true_count("thin_plate", "noisy");
+    for (int face = 0; face < static_cast<int>(part.surfaces.size()); ++face) {
+        std::map<int, int> regions;  // region → triangles of this face
+        int triangles = 0;
+        for (std::size_t t = 0; t < part.face.size(); ++t)
+            if (part.face[t] == face) ++regions[o.result.face_labels[t]], ++triangles;
+        if (triangles < static_cast<int>(part.face.size()) / 4) continue;  // a side
+        int most = 0;
+        for (const auto& [region, n] : regions) most = std::max(most, n);
+        EXPECT_GE(most, 0.99 * triangles) << "face " << face << ": " << regions.size() << " regions";
     }
+    EXPECT_GE(o.accuracy, 0.97);
 }
 
 TEST(CadExtraction, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
@@ -333,10 +341,8 @@ TEST(CadExtraction, NoProxyStaysStuckOnAHandfulOfFaces) {
     // The noisy slotted block (the corpus's case) kept one on three faces while one
     // elliptic cone, within σ of both, took two of the block's sides: every region within
     // its noise, only the side's chart, owned by no proxy, tells where the proxy belongs.
-    for (const CorpusCase& c : cad_corpus()) {
-        if (c.part != "slotted_block" || c.variant != "noisy") continue;
-        const Part part = make_part(c.part, c.options);
-        const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed));
+    {
+        const auto [part, o] = corpus_case_at_true_count("slotted_block", "noisy");
         EXPECT_GE(o.accuracy, 0.95);
         for (const ProxyResult& p : o.result.proxies) EXPECT_GT(p.faces, 20) << "region " << p.id;
     }

@@ -526,7 +526,7 @@ std::vector<char> Lloyd::owned_charts() const {
 
 std::vector<int> Lloyd::misfit_charts() const {
     if (options_.init != Initialization::features) return {};
-    const std::vector<char> seeded = owned_charts();
+    const std::vector<char> owned = owned_charts();
     // Across the creases around a chart, within one region: how far that region's quadric
     // turns. A surface that turns through a crease (by half its angle and more, within an
     // edge) is fitting two faces, however small its error.
@@ -546,7 +546,7 @@ std::vector<int> Lloyd::misfit_charts() const {
     for (int c = 0; c < features_.chart_count; ++c) {
         // A chart of a handful of faces is as likely noise as structure: farthest-point
         // insertion finds it if it matters.
-        if (seeded[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
+        if (owned[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
         double error = 0, area = 0, noise = 0;  // area: a floor for rounding
         for (int f : chart_faces_[c]) error += errors_[f], area += model_.areas[f], noise += face_noise_[f];
         // Charts are the part's structure: a chart whose own fit explains it much better
@@ -845,10 +845,10 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         const Union u = fit_union(i, j);
         const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = u.moments[0] * u.fit.mean_squared;
         const bool as_well_as_apart = united_error <= 1.25 * parts + 1e-12 * u.moments[0];
-        const bool one = within_noise
-                             ? as_well_as_apart || united_error <= noise_energy(i) + noise_energy(j)
-                             : as_well_as_apart && (united_error <= u.moments[0] * options_.precision * options_.precision ||
-                                                    united_error <= noise_energy(i) + noise_energy(j));
+        const bool within_their_noise = united_error <= noise_energy(i) + noise_energy(j);
+        const bool exact = united_error <= u.moments[0] * options_.precision * options_.precision;
+        const bool one = within_noise ? as_well_as_apart || within_their_noise
+                                      : as_well_as_apart && (exact || within_their_noise);
         if (!one) continue;
         if (has_two_parts(classify_union(u).type)) continue;
         candidates.push_back({united_error - parts, static_cast<int>(k), u.fit});
