@@ -222,6 +222,38 @@ TEST(CadExtraction, PiecesOfOneNoisyFaceMergeAtACount) {
     EXPECT_GE(o.accuracy, 0.97);
 }
 
+TEST(CadExtraction, ARoundedBlockWithoutACreaseIsItsTwentySixFaces) {
+    // Beyond the corpus: six planes, twelve quarter cylinders and eight sphere octants, every
+    // edge tangent-continuous, so no chart separates any two faces and fitting alone must.
+    for (const CorpusCase& c : cad_corpus({"rounded_block"})) {
+        if (c.variant == "noisy") continue;  // NoisyFilletsStayApartFromTheirPlanesAtACount
+        const Part part = make_part(c.part, c.options);
+        const int faces = static_cast<int>(part.surfaces.size());
+        const Outcome at_count = run(part, counted(faces, c.options.seed));
+        EXPECT_GE(at_count.accuracy, 0.97) << c.variant;
+        EXPECT_EQ(at_count.two_part, 0) << c.variant;
+        const Outcome automatic = run(part, counted(0, c.options.seed));
+        EXPECT_NEAR(automatic.regions, faces, 0.15 * faces) << c.variant;
+        EXPECT_GE(automatic.accuracy, 0.95) << c.variant;
+    }
+}
+
+TEST(CadExtraction, NoisyFilletsStayApartFromTheirPlanesAtACount) {
+    // Under noise of 4 % of the fillets' radius one general quadric bends round a fillet and
+    // its plane within the noise of both, as well as they fit apart: at a count such pairs
+    // merged until 12 regions were left of 26 (accuracy 0.56). A union must also be the type
+    // the larger region is (a plane stays a plane), which keeps them apart. Still short of
+    // the corpus's bar (bench/RESULTS.md §4): the Lloyd partition itself, within the noise,
+    // does not follow the tangent seams.
+    const std::vector<CorpusCase> cases = cad_corpus({"rounded_block"});
+    const auto noisy = std::find_if(cases.begin(), cases.end(), [](const CorpusCase& c) { return c.variant == "noisy"; });
+    const Part part = make_part(noisy->part, noisy->options);
+    const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), noisy->options.seed));
+    EXPECT_GE(o.regions, 16);
+    EXPECT_GE(o.accuracy, 0.6);
+    EXPECT_EQ(o.two_part, 0);
+}
+
 TEST(CadExtraction, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
     const std::pair<const char*, int> meshes[] = {
         {"fandisk.off", 22}, {"joint.off", 30},          {"csg.off", 10},          {"block.off", 20},

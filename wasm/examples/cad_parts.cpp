@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -601,10 +602,83 @@ Part slotted_block(const PartOptions& o) {
     return b.finish("slotted_block");
 }
 
+// A block with every edge and corner rounded (a box swept by a ball): 6 planes, 12
+// quarter cylinders and 8 sphere octants, all tangent-continuous, so that no crease
+// separates any two of its 26 faces. Each face of the outer box is a grid whose lines
+// include the inner box's edges, lifted onto the rounded surface: a point goes to the
+// inner box's nearest point plus the ball's radius along the way to it.
+Part rounded_block(const PartOptions& o) {
+    PartBuilder b(o);
+    const Vec3 inner(1.0, 0.6, 0.35);  // half sizes
+    const double r = 0.15;
+    // Grid values per axis from −(inner + r) to inner + r with ±inner among them, shared
+    // by the four faces that axis crosses (so that their edges weld).
+    std::vector<double> grid[3];
+    for (int k = 0; k < 3; ++k) {
+        auto piece = [&](double from, double to, int n) {
+            const std::vector<double> t = b.spacing(n);
+            for (int i = grid[k].empty() ? 0 : 1; i <= n; ++i) grid[k].push_back(i == n ? to : from + t[i] * (to - from));
+        };
+        const int round = b.count(5);
+        piece(-inner[k] - r, -inner[k], round);
+        piece(-inner[k], inner[k], b.count(static_cast<int>(std::lround(24 * inner[k]))));
+        piece(inner[k], inner[k] + r, round);
+    }
+    auto lift = [&](const Vec3& p) {
+        const Vec3 nearest = p.cwiseMax(-inner).cwiseMin(inner);
+        return Vec3(nearest + r * (p - nearest).normalized());
+    };
+    // A true face per zone: the signs of the coordinates beyond the inner box.
+    std::map<std::array<int, 3>, int> zone_face;
+    auto face_of = [&](const Vec3& p) {
+        std::array<int, 3> zone{};
+        Vec3 corner = Vec3::Zero();
+        int beyond = 0;
+        for (int k = 0; k < 3; ++k) {
+            zone[k] = p[k] > inner[k] ? 1 : p[k] < -inner[k] ? -1 : 0;
+            corner[k] = zone[k] * inner[k];
+            beyond += zone[k] != 0;
+        }
+        const auto found = zone_face.find(zone);
+        if (found != zone_face.end()) return found->second;
+        TrueSurface s;
+        if (beyond == 1) {
+            const Vec3 normal(zone[0], zone[1], zone[2]);
+            s = plane(corner + r * normal, normal);
+        } else if (beyond == 2) {
+            s = cylinder(corner, Vec3(zone[0] == 0, zone[1] == 0, zone[2] == 0), r);
+        } else {
+            s = {QuadricType::sphere, corner, Vec3::UnitZ(), r};
+        }
+        return zone_face[zone] = b.surface(s);
+    };
+    for (int k = 0; k < 3; ++k)
+        for (const int side : {-1, 1}) {
+            const int u = (k + 1) % 3, v = (k + 2) % 3;
+            auto point = [&](std::size_t i, std::size_t j) {
+                Vec3 p;
+                p[k] = side * (inner[k] + r), p[u] = grid[u][i], p[v] = grid[v][j];
+                return p;
+            };
+            for (std::size_t i = 0; i + 1 < grid[u].size(); ++i) {
+                std::vector<Vec3> row, next;
+                for (std::size_t j = 0; j < grid[v].size(); ++j) row.push_back(lift(point(i, j))), next.push_back(lift(point(i + 1, j)));
+                b.band(row, next, 1, false, [&](int j) { return face_of(0.5 * (point(i, j) + point(i + 1, j + 1))); });
+            }
+        }
+    return b.finish("rounded_block");
+}
+
 }  // namespace
 
-std::vector<std::string> part_names() {
+std::vector<std::string> corpus_part_names() {
     return {"box_boss_hole", "l_bracket", "stepped_shaft", "flange", "thin_plate", "slotted_block"};
+}
+
+std::vector<std::string> part_names() {
+    std::vector<std::string> names = corpus_part_names();
+    names.push_back("rounded_block");
+    return names;
 }
 
 Part make_part(const std::string& name, const PartOptions& options) {
@@ -614,6 +688,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "flange") return flange(options);
     if (name == "thin_plate") return thin_plate(options);
     if (name == "slotted_block") return slotted_block(options);
+    if (name == "rounded_block") return rounded_block(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 

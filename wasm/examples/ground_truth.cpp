@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace vqsa {
 
@@ -68,10 +69,13 @@ Samples true_face_vertices(const Part& part, int face) {
     return vertex_samples(part.mesh.vertices, part.mesh.triangles, faces);
 }
 
-std::vector<CorpusCase> cad_corpus() {
+std::vector<CorpusCase> cad_corpus(const std::vector<std::string>& parts) {
     std::vector<CorpusCase> cases;
-    std::uint64_t seed = 1;
-    for (const std::string& part : part_names())
+    const std::vector<std::string> all = part_names();
+    for (const std::string& part : parts) {
+        const auto index = std::find(all.begin(), all.end(), part) - all.begin();
+        if (index == static_cast<long>(all.size())) throw std::invalid_argument("unknown part '" + part + "'");
+        std::uint64_t seed = 1 + 3 * static_cast<std::uint64_t>(index);
         for (const std::string variant : {"clean", "noisy", "irregular"}) {
             PartOptions o;
             o.random_pose = true;
@@ -80,6 +84,7 @@ std::vector<CorpusCase> cad_corpus() {
             o.irregular = variant == "irregular";
             cases.push_back({part, variant, o});
         }
+    }
     return cases;
 }
 

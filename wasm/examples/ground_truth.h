@@ -21,12 +21,13 @@ struct PartitionScore {
 
 // The corpus the CAD-extraction tests and benchmarks score: every part, clean, with
 // Gaussian noise of 0.2 % of the diagonal along the normals, and irregularly meshed, each
-// in its own random pose.
+// in its own random pose: the parts of corpus_part_names(), or of `parts` (each keeps the
+// seeds it has in the order of part_names()).
 struct CorpusCase {
     std::string part, variant;  // variant: clean, noisy, irregular
     PartOptions options;
 };
-std::vector<CorpusCase> cad_corpus();
+std::vector<CorpusCase> cad_corpus(const std::vector<std::string>& parts = corpus_part_names());
 
 // `labels`: region of every kept triangle of part.mesh; `regions`: how many there are.
 PartitionScore score_partition(const Part& part, const std::vector<int>& labels, int regions);

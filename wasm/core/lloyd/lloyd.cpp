@@ -1,5 +1,8 @@
 #include "lloyd/lloyd.h"
 
+#include "fitting/model_selection.h"
+#include "fitting/samples.h"
+
 #include "geometry/rng.h"
 
 #include <algorithm>
@@ -837,6 +840,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         double cost;
         int pair;
         Fit fit;
+        bool exact;
     };
     std::vector<Candidate> candidates;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -851,7 +855,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
                                       : as_well_as_apart && (exact || within_their_noise);
         if (!one) continue;
         if (has_two_parts(classify_union(u).type)) continue;
-        candidates.push_back({united_error - parts, static_cast<int>(k), u.fit});
+        candidates.push_back({united_error - parts, static_cast<int>(k), u.fit, exact});
     }
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
@@ -862,11 +866,30 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         const std::pair<std::uint64_t, std::pair<int, int>> merge{state, pairs[c.pair]};
         if (std::find(rejected_merges_.begin(), rejected_merges_.end(), merge) != rejected_merges_.end()) continue;
         if (!one_surface(c.fit.quadric, i, j, faces)) continue;
+        if (!c.exact && !keeps_type(i, j, c.fit.quadric, faces)) continue;
         if (merged) *merged = pairs[c.pair];
         merge_pair(i, j, c.fit);
         return true;
     }
     return false;
+}
+
+bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const {
+    // Under noise a general quadric bends round a tangent edge within the noise of both
+    // sides (a fillet of radius 25 σ and its plane fit one hyperbolic paraboloid): the data
+    // then tell the two surfaces apart by their types, not by their errors. The union must
+    // be what the larger region is, by the same model selection as the refit: a plane, a
+    // sphere, a cylinder or a cone of the same type, or, the larger region a general
+    // quadric, any general quadric.
+    auto kind = [&](const std::vector<int>& region, const Quadric& general) {
+        const TypedFit chosen = select_model(region_samples(model_, region), general).chosen;
+        return chosen.special ? static_cast<int>(chosen.type) : -1;  // -1: a general quadric
+    };
+    const int larger = proxies_[a].area >= proxies_[b].area ? a : b;
+    std::vector<int> both = faces[a];
+    both.insert(both.end(), faces[b].begin(), faces[b].end());
+    std::sort(both.begin(), both.end());
+    return kind(both, united) == kind(faces[larger], proxies_[larger].quadric);
 }
 
 bool Lloyd::lies_on(int region, double error, bool strip, double reference) const {

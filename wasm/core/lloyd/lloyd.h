@@ -264,6 +264,9 @@ private:
     // Every sliver and every pair on one exact surface (merge_same_surface(false)), at once
     // (joint/30 has nine slivers, a turned part at 50 thirty pieces): whether any.
     bool merge_at_count();
+    // Whether the union of regions a and b (of quadric `united`) is the surface type the
+    // larger of them is (see lloyd.cpp).
+    bool keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const;
     // Whether q explains regions a and b as one surface (see merge_same_surface).
     bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const;
     // Whether `error`, the region's error against another quadric, says it lies on that
