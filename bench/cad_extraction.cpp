@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
     std::set<std::string> parts, variants;
     std::string json_path;
     bool pose = true;  // --pose 0: the canonical pose, easier to look at
+    double detail = 1;  // --detail: every sample count scaled (0.4: a coarse CAD export's tessellation)
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string flag = argv[i];
         if (flag == "--parts") parts = list(argv[i + 1]);
@@ -125,8 +126,9 @@ int main(int argc, char** argv) {
         else if (flag == "--pose") pose = std::string(argv[i + 1]) == "1";
         else if (flag == "--verbose") verbose = std::string(argv[i + 1]) == "1";
         else if (flag == "--seed-offset") seed_offset = std::stoi(argv[i + 1]);
+        else if (flag == "--detail") detail = std::stod(argv[i + 1]);
         else {
-            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1] [--seed-offset K]\n";
+            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1] [--seed-offset K] [--detail X]\n";
             return 2;
         }
     }
@@ -145,6 +147,7 @@ int main(int argc, char** argv) {
         if (!variants.empty() && !variants.count(c.variant)) continue;
         vqsa::PartOptions options = c.options;
         options.random_pose = pose;
+        options.detail = detail;
         const vqsa::Part part = vqsa::make_part(c.part, options);
         const int faces = static_cast<int>(part.surfaces.size());
         const std::string name = c.part + "_" + c.variant;
