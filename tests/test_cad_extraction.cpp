@@ -238,6 +238,40 @@ TEST(CadExtraction, ARoundedBlockWithoutACreaseIsItsTwentySixFaces) {
     }
 }
 
+TEST(CadExtraction, ACoarseExportsHolesAreNotCutAtEveryFacet) {
+    // The flange meshed as a CAD export with a coarse angular tolerance (detail 0.4, 1 056
+    // triangles): its bolt holes are 12-gons whose facets bend by 14-40°. Bends beyond half
+    // the crease angle counted as a chamfer's edges, so the holes had no tessellation error
+    // allowed and each ended in three regions (22 in all, accuracy 0.919 automatic). Chords
+    // of a polygonal arc now count as chords: two regions per hole, split where a facet bends
+    // by more than the crease angle (its irregular 12-gon has such a bend).
+    const std::vector<CorpusCase> cases = cad_corpus({"flange"});
+    PartOptions options = cases.front().options;  // clean
+    options.detail = 0.4;
+    const Part part = make_part("flange", options);
+    const Outcome automatic = run(part, counted(0, options.seed));
+    EXPECT_LE(automatic.regions, 16);
+    EXPECT_GE(automatic.accuracy, 0.95);
+    EXPECT_EQ(automatic.two_part, 0);
+    const Outcome at_count = run(part, counted(static_cast<int>(part.surfaces.size()), options.seed));
+    EXPECT_GE(at_count.accuracy, 0.99);
+}
+
+TEST(CadExtraction, ACoarseSpheresCapsAreNotTakenByTheFacesTheyCross) {
+    // csg.off: a cube ∪ sphere and a cube ∩ sphere, the sphere 1 066 vertices in all (facets
+    // bending by up to 40°). Automatic, each face of the union, with the sphere's cap through
+    // it, was one cone or hyperboloid region (13 regions, 5 planes, 1 sphere); its facets now
+    // count as chords of the sphere, and the caps are spheres of their own (17 regions,
+    // 9 planes, 5 spheres; 12 planes and 7 sphere pieces in truth).
+    const Mesh mesh = read_mesh_file(test::shared_mesh("csg.off"));
+    const Result r = test::approximate(mesh, counted(0));
+    int planes = 0, spheres = 0;
+    for (const ProxyResult& p : r.proxies) planes += p.type == QuadricType::plane, spheres += p.type == QuadricType::sphere;
+    EXPECT_GE(planes, 9);
+    EXPECT_GE(spheres, 5);
+    EXPECT_EQ(two_part_regions(mesh, r), 0);
+}
+
 TEST(CadExtraction, NoisyFilletsStayApartFromTheirPlanesAtACount) {
     // Under noise of 4 % of the fillets' radius one general quadric bends round a fillet and
     // its plane within the noise of both, as well as they fit apart: at a count such pairs

@@ -281,6 +281,70 @@ std::vector<double> chart_roughness(const Model& model, const std::vector<Vec3>&
     return roughness;
 }
 
+// Whether the bend across dual edge e is a chord of a polygonal arc rather than a lone edge
+// such as a chamfer's: on each side, within two faces not across another bend, the arc
+// bends again by a similar angle (half to twice as much: a coarse hole's facets are
+// irregular), the same way, along a parallel edge beside it (the next facet column). A
+// chamfer of one row has its other bend on one side only: the face beyond it is flat.
+bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f, int e, double crease_limit) {
+    const DualGraph& g = model.graph;
+    auto turn = [&](int a, int link) { return std::acos(std::clamp(raw[a].dot(raw[g.neighbor[link]]), -1.0, 1.0)); };
+    struct Bend {
+        Vec3 a, direction, middle;
+        double angle, length;
+        int way;  // convex or concave: the same seen from either side
+    };
+    auto bend_of = [&](int a, int link) {
+        const int b = g.neighbor[link];
+        int shared[2] = {-1, -1}, k = 0;
+        for (int u : model.triangles[a])
+            for (int v : model.triangles[b])
+                if (u == v && k < 2) shared[k++] = u;
+        Bend out{};
+        if (k < 2) return out;
+        const Vec3 &p = model.points[shared[0]], &q = model.points[shared[1]];
+        out.a = p, out.length = (q - p).norm(), out.direction = (q - p) / std::max(out.length, 1e-300);
+        out.middle = 0.5 * (p + q), out.angle = turn(a, link);
+        out.way = (raw[b] - raw[a]).dot(model.barycentres[b] - model.barycentres[a]) >= 0 ? 1 : -1;
+        return out;
+    };
+    const Bend self = bend_of(f, e);
+    if (!(self.length > 0)) return false;
+    const int h = g.neighbor[e];
+    auto bends_again = [&](int start, int excluded) {
+        // Faces within two links of `start` that bend by less than half as much, not
+        // through `excluded`.
+        std::vector<int> reached{start}, frontier{start};
+        for (int depth = 0; depth < 2; ++depth) {
+            std::vector<int> next;
+            for (int a : frontier)
+                for (int l = g.begin(a); l < g.end(a); ++l) {
+                    const int b = g.neighbor[l];
+                    if (b == excluded || turn(a, l) >= 0.5 * self.angle || std::find(reached.begin(), reached.end(), b) != reached.end())
+                        continue;
+                    reached.push_back(b), next.push_back(b);
+                }
+            frontier.swap(next);
+        }
+        for (int a : reached)
+            for (int l = g.begin(a); l < g.end(a); ++l) {
+                if (g.neighbor[l] == excluded) continue;
+                const double angle = turn(a, l);
+                if (angle < 0.5 * self.angle || angle > crease_limit) continue;
+                const Bend other = bend_of(a, l);
+                if (!(other.length > 0) || std::abs(other.direction.dot(self.direction)) < 0.9) continue;
+                const Vec3 off = other.middle - self.a;
+                // The same bend line continued is no second bend; nor is one of another size
+                // or turning the other way.
+                if ((off - off.dot(self.direction) * self.direction).norm() < 0.1 * self.length) continue;
+                if (other.angle > 2 * self.angle || other.way != self.way) continue;
+                return true;
+            }
+        return false;
+    };
+    return bends_again(f, h) && bends_again(h, f);
+}
+
 }  // namespace
 
 Features detect_features(const Model& model, const FeatureOptions& options) {
@@ -312,7 +376,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // up to as much, the vertices lying on the surface. Per face: a curved face
     // beside a flat one in a chart (a fillet) keeps its own.
     constexpr double kSagittaRms = 1.0;
-    const double smooth_limit = 0.5 * options.crease_angle * M_PI / 180;
+    const double smooth_limit = 0.5 * options.crease_angle * M_PI / 180, crease_limit = options.crease_angle * M_PI / 180;
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
         // Across the face's narrowest width: a sliver's length is no chord.
@@ -321,7 +385,12 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         for (int e = g.begin(f); e < g.end(f); ++e) {
             if (out.crease[e] || !(g.edge_length[e] > 0)) continue;
             const double angle = std::acos(std::clamp(raw[f].dot(raw[g.neighbor[e]]), -1.0, 1.0));
-            if (angle > smooth_limit) continue;  // a bend (a chamfer's edge), not a chord
+            // A bend (a chamfer's edge), not a chord, unless it is one of a polygonal arc's
+            // and well beyond what the chart's noise does to a face's normal (about 2σ/width):
+            // noise puts bends beside bends anywhere.
+            const bool chord = angle <= smooth_limit ||
+                               (angle >= 8 * per_chart[out.chart[f]] / width && polygonal_arc_chord(model, raw, f, e, crease_limit));
+            if (!chord) continue;
             sagitta = std::max(sagitta, width * angle / 8);
         }
         out.roughness[f] = std::hypot(per_chart[out.chart[f]], kSagittaRms * sagitta);

@@ -1,0 +1,34 @@
+// Creases and roughness (geometry/features.h): what a tessellation's facets count as.
+#include "geometry/features.h"
+#include "geometry/model.h"
+#include "shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace vqsa;
+
+TEST(Features, FacetsOfACoarseCylinderAreChordsNotChamferEdges) {
+    // A 12-gon cylinder, as a CAD export with a coarse angular tolerance meshes a small hole:
+    // its facets bend by 30°, more than half the crease angle. Each bend has a bend beside
+    // it, the same way, one facet over: chords of an arc, so the facets stand off the
+    // cylinder by their sagitta and their roughness says so (before: only the chart's
+    // roughness, ~0 on a clean mesh, and a coarse hole's pieces could never merge).
+    const double radius = 0.5, height = 1.5;
+    const int around = 12;
+    const Model model = make_model(make_closed_cylinder(radius, height, around, 4).mesh);
+    const Features features = detect_features(model);
+    const double unit = 1 / model.frame.scale;  // the unit frame: the longest bounding-box side is 1
+    const double sagitta = radius * (1 - std::cos(M_PI / around)) * unit;
+    int side = 0;
+    for (int f = 0; f < model.face_count(); ++f) {
+        const Vec3 n = (model.points[model.triangles[f][1]] - model.points[model.triangles[f][0]])
+                           .cross(model.points[model.triangles[f][2]] - model.points[model.triangles[f][0]]);
+        if (std::abs(n.normalized().z()) > 0.5) continue;  // a cap
+        ++side;
+        EXPECT_GT(features.roughness[f], 0.25 * sagitta) << "face " << f;
+        EXPECT_LT(features.roughness[f], 2 * sagitta) << "face " << f;
+    }
+    EXPECT_GT(side, 0);
+}
