@@ -290,7 +290,7 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
     const DualGraph& g = model.graph;
     auto turn = [&](int a, int link) { return std::acos(std::clamp(raw[a].dot(raw[g.neighbor[link]]), -1.0, 1.0)); };
     struct Bend {
-        Vec3 a, direction, middle;
+        Vec3 from, direction, middle;  // the shared edge: an end, its unit direction, its middle
         double angle, length;
         int way;  // convex or concave: the same seen from either side
     };
@@ -303,7 +303,7 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
         Bend out{};
         if (k < 2) return out;
         const Vec3 &p = model.points[shared[0]], &q = model.points[shared[1]];
-        out.a = p, out.length = (q - p).norm(), out.direction = (q - p) / std::max(out.length, 1e-300);
+        out.from = p, out.length = (q - p).norm(), out.direction = (q - p) / std::max(out.length, 1e-300);
         out.middle = 0.5 * (p + q), out.angle = turn(a, link);
         out.way = (raw[b] - raw[a]).dot(model.barycentres[b] - model.barycentres[a]) >= 0 ? 1 : -1;
         return out;
@@ -320,7 +320,8 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
             for (int a : frontier)
                 for (int l = g.begin(a); l < g.end(a); ++l) {
                     const int b = g.neighbor[l];
-                    if (b == excluded || turn(a, l) >= 0.5 * self.angle || std::find(reached.begin(), reached.end(), b) != reached.end())
+                    if (b == excluded || turn(a, l) >= 0.5 * self.angle ||
+                        std::find(reached.begin(), reached.end(), b) != reached.end())
                         continue;
                     reached.push_back(b), next.push_back(b);
                 }
@@ -333,7 +334,7 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
                 if (angle < 0.5 * self.angle || angle > crease_limit) continue;
                 const Bend other = bend_of(a, l);
                 if (!(other.length > 0) || std::abs(other.direction.dot(self.direction)) < 0.9) continue;
-                const Vec3 off = other.middle - self.a;
+                const Vec3 off = other.middle - self.from;
                 // The same bend line continued is no second bend; nor is one of another size
                 // or turning the other way.
                 if ((off - off.dot(self.direction) * self.direction).norm() < 0.1 * self.length) continue;
