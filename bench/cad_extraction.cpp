@@ -1,7 +1,8 @@
 // CAD extraction on the procedural corpus (examples/cad_parts.h; --parts may also name
 // parts beyond it, such as rounded_block): for every part and variant, the area accuracy
 // under the best matching of regions to true faces at the true face count and with the
-// automatic count, the regions lying on two parts of their quadric, and the time. `vqsa_cad [--parts a,b] [--variants clean,noisy] [--json FILE]`
+// automatic count, the regions lying on two parts of their quadric, and the time.
+// `vqsa_cad [--parts a,b] [--variants clean,noisy] [--detail X] [--json FILE]` (all flags: the usage line).
 #include "cad_parts.h"
 #include "export/gltf_export.h"
 #include "ground_truth.h"

@@ -281,6 +281,11 @@ std::vector<double> chart_roughness(const Model& model, const std::vector<Vec3>&
     return roughness;
 }
 
+// The angle between the normals of face a and its neighbour across dual-graph link `link`.
+double turn(const DualGraph& g, const std::vector<Vec3>& normal, int a, int link) {
+    return std::acos(std::clamp(normal[a].dot(normal[g.neighbor[link]]), -1.0, 1.0));
+}
+
 // Whether the bend across dual edge e is a chord of a polygonal arc rather than a lone edge
 // such as a chamfer's: on each side, within two faces not across another bend, the arc
 // bends again by a similar angle (half to twice as much: a coarse hole's facets are
@@ -288,7 +293,6 @@ std::vector<double> chart_roughness(const Model& model, const std::vector<Vec3>&
 // chamfer of one row has its other bend on one side only: the face beyond it is flat.
 bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f, int e, double crease_limit) {
     const DualGraph& g = model.graph;
-    auto turn = [&](int a, int link) { return std::acos(std::clamp(raw[a].dot(raw[g.neighbor[link]]), -1.0, 1.0)); };
     struct Bend {
         Vec3 from, direction, middle;  // the shared edge: an end, its unit direction, its middle
         double angle, length;
@@ -304,7 +308,7 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
         if (k < 2) return out;
         const Vec3 &p = model.points[shared[0]], &q = model.points[shared[1]];
         out.from = p, out.length = (q - p).norm(), out.direction = (q - p) / std::max(out.length, 1e-300);
-        out.middle = 0.5 * (p + q), out.angle = turn(a, link);
+        out.middle = 0.5 * (p + q), out.angle = turn(g, raw, a, link);
         out.way = (raw[b] - raw[a]).dot(model.barycentres[b] - model.barycentres[a]) >= 0 ? 1 : -1;
         return out;
     };
@@ -320,7 +324,7 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
             for (int a : frontier)
                 for (int l = g.begin(a); l < g.end(a); ++l) {
                     const int b = g.neighbor[l];
-                    if (b == excluded || turn(a, l) >= 0.5 * self.angle ||
+                    if (b == excluded || turn(g, raw, a, l) >= 0.5 * self.angle ||
                         std::find(reached.begin(), reached.end(), b) != reached.end())
                         continue;
                     reached.push_back(b), next.push_back(b);
@@ -330,7 +334,7 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
         for (int a : reached)
             for (int l = g.begin(a); l < g.end(a); ++l) {
                 if (g.neighbor[l] == excluded) continue;
-                const double angle = turn(a, l);
+                const double angle = turn(g, raw, a, l);
                 if (angle < 0.5 * self.angle || angle > crease_limit) continue;
                 const Bend other = bend_of(a, l);
                 if (!(other.length > 0) || std::abs(other.direction.dot(self.direction)) < 0.9) continue;
@@ -385,7 +389,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         double sagitta = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             if (out.crease[e] || !(g.edge_length[e] > 0)) continue;
-            const double angle = std::acos(std::clamp(raw[f].dot(raw[g.neighbor[e]]), -1.0, 1.0));
+            const double angle = turn(g, raw, f, e);
             // A bend (a chamfer's edge), not a chord, unless it is one of a polygonal arc's
             // and well beyond what the chart's noise does to a face's normal (about 2σ/width):
             // noise puts bends beside bends anywhere.
