@@ -235,7 +235,10 @@ Classification Lloyd::classify_proxy(int proxy) const {
 }
 
 void Lloyd::stop(StopReason reason) {
-    if (reason != StopReason::cancelled) ensure_valid();
+    if (reason != StopReason::cancelled) {
+        release_minor_parts();
+        ensure_valid();
+    }
     stop_reason_ = reason;
 }
 
@@ -771,6 +774,77 @@ void Lloyd::ensure_valid() {
         // (a tessellation's facet beside a tangent plane belongs to the curved side).
         absorb(added, chosen);
         if (options_.proxies > 0 && static_cast<int>(proxies_.size()) > options_.proxies) merge_cheapest();
+    }
+}
+
+void Lloyd::release_minor_parts() {
+    // A plane and the first facet column of the cylinder tangent to it lie exactly on a
+    // pair of planes: a region whose quadric is that pair keeps the column (the cylinder's
+    // region explains it no better), and the refit then types the plane a cylinder of
+    // radius 780. A second part too small to split off, if it is such a strip, goes face by
+    // face to a neighbouring region that explains it as well as its own region does, or as
+    // well as that neighbour explains its own faces (within the noise factor: the
+    // cylinder's quadric, fitted to its facets, is not exact either). A narrow face of its
+    // own stays, as no neighbour explains it: at a count below the part's faces a pair of
+    // planes may fit two faces, and the paper's counts keep their partitions.
+    const DualGraph& g = model_.graph;
+    FaceErrors others;
+    for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
+        const Proxy& proxy = proxies_[i];
+        if (proxy.faces < options_.min_quadric_faces || proxy.quadric.is_plane()) continue;
+        const Classification c = classify_proxy(i);
+        if (!has_two_parts(c.type)) continue;
+        const double margin = part_margin(i);
+        const Parts p = parts(proxy.quadric, c, margin, i, i);
+        const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
+        if (p.count[minor] == 0 || on_two_parts(proxy.quadric, p, proxy.area)) continue;
+        const int minor_side = minor == 0 ? 1 : -1;
+        const Quadric q = proxy.quadric;
+        // Only a strip one facet wide: a column of a ruled band's tessellation lies exactly
+        // on a plane, which makes the pair; a compact second part is a shape of its own.
+        std::vector<int> on_minor(model_.face_count(), 0), strip;
+        for (int f = 0; f < model_.face_count(); ++f)
+            if (labels_[f] == i && side_of(q, f, c, margin) == minor_side) on_minor[f] = 1, strip.push_back(f);
+        if (!is_strip(model_, on_minor, strip, 0)) continue;
+        const Snapshot before{labels_, proxies_, energy_};
+        std::vector<char> changed(proxies_.size(), 0);
+        others.reset(model_, quadrics_of(proxies_));
+        // From the part's rim inwards: a face goes once a neighbour of it has.
+        for (bool moved = true; moved;) {
+            moved = false;
+            for (int f : strip) {
+                if (labels_[f] != i) continue;
+                int to = -1;
+                double least = std::numeric_limits<double>::infinity();
+                for (int k = g.begin(f); k < g.end(f); ++k) {
+                    const int j = labels_[g.neighbor[k]];
+                    if (j == i || j == to || !(proxies_[j].area > 0)) continue;
+                    const double e = others(f, j);
+                    const double as_its_own = options_.noise_factor * options_.noise_factor * model_.areas[f] *
+                                              proxies_[j].error / proxies_[j].area;
+                    if (e <= std::max(errors_[f], as_its_own) && e < least) least = e, to = j;
+                }
+                if (to < 0) continue;
+                labels_[f] = to;
+                changed[i] = changed[to] = 1, moved = true;
+            }
+        }
+        if (!changed[i]) continue;
+        refit_regions(model_, labels_, options_, proxies_, changed);
+        evaluate(&changed);
+        // The region must now be one part of its quadric (a few of the strip's faces left
+        // on the second part make another pair, whose second plane may cross a neighbour),
+        // and each region the faces went to must explain its faces about as well as
+        // before: its error per unit area within the noise factor of what it was, or
+        // within the precision floor.
+        const double factor = options_.noise_factor * options_.noise_factor, floor = options_.precision * options_.precision;
+        bool kept = !has_two_parts(classify_proxy(i).type);
+        for (int j = 0; j < static_cast<int>(proxies_.size()) && kept; ++j) {
+            if (j == i || !changed[j]) continue;
+            const Proxy &now = proxies_[j], &was = before.proxies[j];
+            kept = now.error <= now.area * std::max(factor * was.error / std::max(was.area, 1e-300), floor);
+        }
+        if (!kept) restore(before);
     }
 }
 

@@ -230,6 +230,9 @@ private:
     bool merge_least_cost(const std::function<bool(int, int)>& eligible,
                           const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable);
     bool invalid(int proxy, Parts* parts = nullptr) const;
+    // At the stop: the faces on a region's second part, too small to split off, to
+    // neighbouring regions that explain them as well (see lloyd.cpp).
+    void release_minor_parts();
     bool split_invalid();
     // The adjacent pair whose union fit costs least, if its union is valid.
     bool merge_cheapest();
