@@ -788,18 +788,18 @@ void Lloyd::release_minor_parts() {
     // own stays, as no neighbour explains it: at a count below the part's faces a pair of
     // planes may fit two faces, and the paper's counts keep their partitions.
     const DualGraph& g = model_.graph;
+    const double factor = options_.noise_factor * options_.noise_factor, floor = options_.precision * options_.precision;
     FaceErrors others;
     for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
-        const Proxy& proxy = proxies_[i];
-        if (proxy.faces < options_.min_quadric_faces || proxy.quadric.is_plane()) continue;
-        const Classification c = classify_proxy(i);
-        if (!has_two_parts(c.type)) continue;
-        const double margin = part_margin(i);
-        const Parts p = parts(proxy.quadric, c, margin, i, i);
+        // A second part large enough to count is ensure_valid's; none at all, nothing to do.
+        Parts p;
+        if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() || invalid(i, &p)) continue;
         const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
-        if (p.count[minor] == 0 || on_two_parts(proxy.quadric, p, proxy.area)) continue;
+        if (p.count[minor] == 0) continue;
         const int minor_side = minor == 0 ? 1 : -1;
-        const Quadric q = proxy.quadric;
+        const Quadric q = proxies_[i].quadric;
+        const Classification c = classify_proxy(i);
+        const double margin = part_margin(i);
         // Only a strip one facet wide: a column of a ruled band's tessellation lies exactly
         // on a plane, which makes the pair; a compact second part is a shape of its own.
         std::vector<int> on_minor(model_.face_count(), 0), strip;
@@ -820,8 +820,7 @@ void Lloyd::release_minor_parts() {
                     const int j = labels_[g.neighbor[k]];
                     if (j == i || j == to || !(proxies_[j].area > 0)) continue;
                     const double e = others(f, j);
-                    const double as_its_own = options_.noise_factor * options_.noise_factor * model_.areas[f] *
-                                              proxies_[j].error / proxies_[j].area;
+                    const double as_its_own = factor * model_.areas[f] * proxies_[j].error / proxies_[j].area;
                     if (e <= std::max(errors_[f], as_its_own) && e < least) least = e, to = j;
                 }
                 if (to < 0) continue;
@@ -837,7 +836,6 @@ void Lloyd::release_minor_parts() {
         // and each region the faces went to must explain its faces about as well as
         // before: its error per unit area within the noise factor of what it was, or
         // within the precision floor.
-        const double factor = options_.noise_factor * options_.noise_factor, floor = options_.precision * options_.precision;
         bool kept = !has_two_parts(classify_proxy(i).type);
         for (int j = 0; j < static_cast<int>(proxies_.size()) && kept; ++j) {
             if (j == i || !changed[j]) continue;
