@@ -268,6 +268,25 @@ TEST(Metrics, OneSpikeIsMeasuredToTheStatedAccuracyAndItsHeightIsTheMaximum) {
     EXPECT_LT(m.vertex_distance[0], 1e-15);
 }
 
+TEST(Metrics, ASmoothErrorIsMeasuredFromTheCornersToAHundredthOfAPercent) {
+    // A sheet against a copy bent by a smooth bump (both signs): the squared distance
+    // interpolated from the corners' signed distances predicts the samples' so well that
+    // the pilot pass alone has a standard error under 0.01 % (the samples taken alone:
+    // 0.08 %), and agrees with 500 000 samples per surface.
+    Shape sheet = make_grid([](double u, double v) { return Vec3(u, v, 0); }, 0, 2, 0, 1, 40, 20);
+    const std::vector<int> labels(sheet.mesh.triangles.size(), 0);
+    std::vector<Vec3> bent = sheet.mesh.vertices;
+    for (Vec3& p : bent) p.z() += 0.01 * std::sin(3 * p.x()) * std::cos(2 * p.y());
+    const Metrics m = measure(sheet.mesh.vertices, bent, sheet.mesh.triangles, labels, 1);
+    EXPECT_EQ(m.samples, 2 * 2000);  // no second pass
+    EXPECT_LT(m.rms_standard_error, 1e-4);
+    MetricsOptions dense;
+    dense.samples = 500000;
+    const Metrics reference = measure(sheet.mesh.vertices, bent, sheet.mesh.triangles, labels, 1, dense);
+    EXPECT_NEAR(m.rms, reference.rms, 1e-4 * reference.rms);
+    EXPECT_NEAR(m.region_rms[0], m.rms, 1e-15);
+}
+
 TEST(PostProcessing, FandiskEndToEnd) {
     const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
     int smoothing_events = 0;

@@ -1,5 +1,7 @@
 #include "post/metrics.h"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 
@@ -36,16 +38,20 @@ constexpr int max_samples = 500000;
 
 }  // namespace
 
-// Σ w·d² over samples of weight w (their mean estimates the area mean of d²), and the largest d.
+// The sums over samples of weight w of w·d² and w·g, g the control variate (below, a
+// sample's interpolated squared distance less its exact area mean), the weight and the
+// largest distance d. (Σ w·d² − β Σ w·g) / Σ w estimates the area mean of d² for any β.
 struct Measurement::Accumulator {
-    double sum2 = 0, weight = 0, max = 0;
+    double sum_y = 0, sum_g = 0, weight = 0, max = 0;
     long count = 0;
-    void add(double d, double w) {
-        sum2 += w * d * d;
+    void add(double d, double g, double w) {
+        sum_y += w * d * d;
+        sum_g += w * g;
         weight += w;
         max = std::max(max, d);
         ++count;
     }
+    double mean(double beta) const { return weight > 0 ? (sum_y - beta * sum_g) / weight : 0; }
 };
 
 // Samples of one surface measured against the other's tree. Systematic: the k-th sample
@@ -63,10 +69,13 @@ struct Measurement::Sweep {
     double spacing, next, swept = 0;
     std::size_t triangle = 0;
     int drawn = 0;
-    // Successive differences of the weighted squared distances along the sweep: their mean square
-    // estimates the variance of a systematic sample's mean, which the variance of
-    // independent draws would overstate (Wolter, Introduction to Variance Estimation, §8).
-    double last2 = 0, differences = 0;
+    // Σ Δu Δuᵀ along the sweep, u = (w·d², w·g, w): the successive differences of the
+    // linearised estimate z = w·(d² − β g − R), R the estimate, are a·Δu with
+    // a = (1, −β, −R); their mean square estimates the variance of a systematic sample's
+    // mean, which the variance of independent draws would overstate (Wolter, Introduction
+    // to Variance Estimation, §8).
+    Eigen::Matrix3d differences = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d last = Eigen::Vector3d::Zero();
     Accumulator total;
 
     Sweep(const Surface& surface, const TriangleTree& to, bool hinted, int samples, std::uint64_t seed)
@@ -80,6 +89,7 @@ struct Measurement::Sweep {
     int run(int budget, const std::vector<int>* labels, std::vector<Accumulator>& regions) {
         const std::vector<Vec3>& from = surface.points;
         const std::vector<Triangle>& triangles = surface.triangles;
+        const std::vector<double>& s = surface.vertex_distance;
         const int start = drawn;
         for (; triangle < triangles.size() && drawn < samples && drawn - start < budget; ++triangle) {
             const std::size_t t = triangle;
@@ -93,11 +103,14 @@ struct Measurement::Sweep {
                 const Triangle& tri = triangles[t];
                 const Vec3 p = (1 - r1) * from[tri[0]] + r1 * (1 - r2) * from[tri[1]] + r1 * r2 * from[tri[2]];
                 const double d = to.nearest(p, hinted ? static_cast<int>(t) : -1).distance;
-                const double y = weight * d * d;
-                if (total.count > 0) differences += (y - last2) * (y - last2);
-                last2 = y;
-                total.add(d, weight);
-                if (labels && (*labels)[t] >= 0) regions[(*labels)[t]].add(d, weight);
+                const double interpolated = (1 - r1) * s[tri[0]] + r1 * (1 - r2) * s[tri[1]] + r1 * r2 * s[tri[2]];
+                const double h = interpolated * interpolated;
+                const Eigen::Vector3d u(weight * d * d, weight * (h - surface.interpolated_mean), weight);
+                if (total.count > 0) differences += (u - last) * (u - last).transpose();
+                last = u;
+                total.add(d, h - surface.interpolated_mean, weight);
+                if (labels && (*labels)[t] >= 0)
+                    regions[(*labels)[t]].add(d, h - surface.region_interpolated_mean[(*labels)[t]], weight);
             }
             if (next < swept + density) break;  // out of budget inside this triangle
             swept += density;
@@ -159,6 +172,23 @@ void Measurement::set_densities() {
             s->total_density += s->areas[t] * corner[t];
         }
         s->factor = std::move(corner);
+        // The control variate's exact area means: of (Σ λᵢ sᵢ)² over a triangle, λ uniform
+        // barycentric coordinates, (Σ sᵢ² + Σ_{i<j} sᵢ sⱼ) / 6.
+        const std::size_t regions = region_.size();
+        std::vector<double> region_sum(regions, 0.0), region_area(regions, 0.0);
+        double sum = 0;
+        for (std::size_t t = 0; t < n; ++t) {
+            const Triangle& tri = s->triangles[t];
+            const double s0 = s->vertex_distance[tri[0]], s1 = s->vertex_distance[tri[1]], s2 = s->vertex_distance[tri[2]];
+            const double integral = s->areas[t] * (s0 * s0 + s1 * s1 + s2 * s2 + s0 * s1 + s1 * s2 + s2 * s0) / 6;
+            sum += integral;
+            const int label = labels_ ? (*labels_)[t] : -1;
+            if (label >= 0) region_sum[label] += integral, region_area[label] += s->areas[t];
+        }
+        s->interpolated_mean = area > 0 ? sum / area : 0;
+        s->region_interpolated_mean.assign(regions, 0.0);
+        for (std::size_t r = 0; r < regions; ++r)
+            if (region_area[r] > 0) s->region_interpolated_mean[r] = region_sum[r] / region_area[r];
     }
 }
 
@@ -177,20 +207,39 @@ long Measurement::planned_queries() const {
     return planned;
 }
 
-double Measurement::mean_squared() const {
-    double sum2 = 0, weight = 0;
-    for (const auto& s : sweeps_) sum2 += s->total.sum2, weight += s->total.weight;
-    return weight > 0 ? sum2 / weight : 0;
+Measurement::Accumulator Measurement::pooled() const {
+    Accumulator all;
+    for (const auto& s : sweeps_) {
+        all.sum_y += s->total.sum_y, all.sum_g += s->total.sum_g, all.weight += s->total.weight;
+        all.count += s->total.count, all.max = std::max(all.max, s->total.max);
+    }
+    return all;
 }
 
-double Measurement::pooled_standard_error() const {
-    double variance = 0;
-    long count = 0;
-    for (const auto& s : sweeps_) {
-        count += s->total.count;
-        if (s->total.count > 1) variance += s->total.count * s->differences / (2.0 * (s->total.count - 1));
-    }
-    return count > 0 ? std::sqrt(variance) / count : 0;
+Eigen::Matrix3d Measurement::pooled_differences() const {
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (const auto& s : sweeps_)
+        if (s->total.count > 1) m += s->total.count / (2.0 * (s->total.count - 1)) * s->differences;
+    return m;
+}
+
+// The β that minimises the estimated variance: a = a0 + β a1, a0 = (1, 0, −R0),
+// a1 = (0, −1, R1), R0 and R1 the weighted means of d² and g. Estimated from the same
+// samples, it biases the estimate by O(1/n), far below its standard error.
+double Measurement::control_coefficient() const {
+    const Accumulator all = pooled();
+    if (!(all.weight > 0)) return 0;
+    const Eigen::Matrix3d m = pooled_differences();
+    const Eigen::Vector3d a0(1, 0, -all.sum_y / all.weight), a1(0, -1, all.sum_g / all.weight);
+    const double curvature = a1.dot(m * a1);
+    return curvature > 0 ? -a0.dot(m * a1) / curvature : 0;
+}
+
+double Measurement::pooled_standard_error(double beta) const {
+    const Accumulator all = pooled();
+    if (all.count == 0) return 0;
+    const Eigen::Vector3d a(1, -beta, -all.mean(beta));
+    return std::sqrt(std::max(0.0, a.dot(pooled_differences() * a))) / all.count;
 }
 
 bool Measurement::step() {
@@ -214,8 +263,17 @@ bool Measurement::step() {
             Surface& surface = from_a ? a_ : b_;
             const TriangleTree& to = from_a ? *b_.tree : *a_.tree;
             if (surface.vertex_face[v] < 0) continue;  // on no face: not on the surface
-            surface.vertex_distance[v] = to.nearest(surface.points[v], shared_ ? surface.vertex_face[v] : -1).distance;
-            vertex_max_ = std::max(vertex_max_, surface.vertex_distance[v]);
+            const Vec3& p = surface.points[v];
+            const TriangleTree::Hit hit = to.nearest(p, shared_ ? surface.vertex_face[v] : -1);
+            const Surface& other = from_a ? b_ : a_;
+            double side = 1;
+            if (hit.triangle >= 0) {
+                const Triangle& near = other.triangles[hit.triangle];
+                const Vec3 normal = (other.points[near[1]] - other.points[near[0]]).cross(other.points[near[2]] - other.points[near[0]]);
+                if ((p - hit.point).dot(normal) < 0) side = -1;
+            }
+            surface.vertex_distance[v] = side * hit.distance;
+            vertex_max_ = std::max(vertex_max_, hit.distance);
         }
         done_queries_ += static_cast<long>(end - next_vertex_);
         next_vertex_ = end;
@@ -236,7 +294,8 @@ bool Measurement::step() {
         // More samples when the pilot's estimate of the RMS is not yet precise enough:
         // the standard error falls as one over the square root of the count.
         extended_ = true;
-        const double mean2 = mean_squared(), se2 = pooled_standard_error();
+        const double beta = control_coefficient();
+        const double mean2 = pooled().mean(beta), se2 = pooled_standard_error(beta);
         // Of the RMS: relative, and absolute against the rounding of the diagonal.
         const double relative = mean2 > 0 ? 0.5 * se2 / mean2 : 0;
         const bool negligible = mean2 > 0 && 0.5 * se2 / std::sqrt(mean2) <= 1e-12 * diagonal_;
@@ -259,20 +318,20 @@ double Measurement::fraction() const {
 Metrics Measurement::result() const {
     Metrics m;
     const double scale = diagonal_ > 0 ? 1 / diagonal_ : 0;
-    double max = vertex_max_;
-    long count = 0;
-    for (const auto& s : sweeps_) count += s->total.count, max = std::max(max, s->total.max);
-    const double mean2 = mean_squared();
+    const Accumulator all = pooled();
+    const double beta = control_coefficient();
+    // The control variate can leave a slightly negative estimate where the surfaces nearly coincide.
+    const double mean2 = std::max(0.0, all.mean(beta));
     m.rms = std::sqrt(mean2) * scale;
-    m.hausdorff = max * scale;
-    m.samples = count;
-    if (options_.samples <= 0 && mean2 > 0) m.rms_standard_error = 0.5 * pooled_standard_error() / mean2;
+    m.hausdorff = std::max(vertex_max_, all.max) * scale;
+    m.samples = all.count;
+    if (options_.samples <= 0 && mean2 > 0) m.rms_standard_error = 0.5 * pooled_standard_error(beta) / mean2;
     for (const Accumulator& r : region_) {
-        m.region_rms.push_back(r.weight > 0 ? std::sqrt(r.sum2 / r.weight) * scale : 0);
+        m.region_rms.push_back(std::sqrt(std::max(0.0, r.mean(beta))) * scale);
         m.region_hausdorff.push_back(r.max * scale);
     }
     m.vertex_distance.resize(b_.vertex_distance.size());
-    for (std::size_t v = 0; v < b_.vertex_distance.size(); ++v) m.vertex_distance[v] = b_.vertex_distance[v] * scale;
+    for (std::size_t v = 0; v < b_.vertex_distance.size(); ++v) m.vertex_distance[v] = std::abs(b_.vertex_distance[v]) * scale;
     return m;
 }
 

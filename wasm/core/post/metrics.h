@@ -67,19 +67,27 @@ private:
         std::vector<double> areas;
         std::unique_ptr<TriangleTree> tree;
         std::vector<int> vertex_face;  // a face of each vertex (a search hint), or -1
-        std::vector<double> vertex_distance;  // of each vertex to the other surface
+        // Of each vertex to the other surface, signed: negative behind the nearest triangle.
+        std::vector<double> vertex_distance;
         // Sampling density per unit area, per triangle (set_densities); a sample of triangle t
         // weighs its area share over its density share.
         std::vector<double> factor;
         double area = 0, total_density = 0;
+        // The area means of the squared distance interpolated linearly from the corners' signed
+        // distances, over the surface and over each region: known exactly, so the samples
+        // estimate only how far the squared distance departs from it (a control variate).
+        double interpolated_mean = 0;
+        std::vector<double> region_interpolated_mean;
         double density(std::size_t t) const { return areas[t] * factor[t]; }
         double weight(std::size_t t) const { return total_density / (area * factor[t]); }
     };
     void set_densities();
     void start_sweeps(int samples, std::uint64_t seed);
     long planned_queries() const;
-    double mean_squared() const;           // of the distances, weighted, over every sweep
-    double pooled_standard_error() const;  // of the pooled mean of squared distances
+    Accumulator pooled() const;                      // every sweep's samples
+    Eigen::Matrix3d pooled_differences() const;     // their successive differences, scaled
+    double control_coefficient() const;              // β
+    double pooled_standard_error(double beta) const; // of the pooled mean of squared distances
 
     Surface a_, b_;
     const std::vector<int>* labels_;
