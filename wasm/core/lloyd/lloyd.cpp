@@ -683,6 +683,16 @@ double Lloyd::part_margin(int proxy) const {
     return 2 * std::sqrt(std::max(proxies_[proxy].error, region_noise_[proxy]) / area);
 }
 
+std::vector<int> Lloyd::faces_on_side(int proxy, int side) const {
+    const Quadric& q = proxies_[proxy].quadric;
+    const Classification c = classify_proxy(proxy);
+    const double margin = part_margin(proxy);
+    std::vector<int> faces;
+    for (int f = 0; f < model_.face_count(); ++f)
+        if (labels_[f] == proxy && side_of(q, f, c, margin) == side) faces.push_back(f);
+    return faces;
+}
+
 Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double margin, int a, int b) const {
     Parts out;
     if (!q.is_plane() && !has_two_parts(c.type)) return out;
@@ -758,14 +768,12 @@ void Lloyd::ensure_valid() {
                 chosen = i, chosen_parts = p;
         }
         if (chosen < 0) return;
-        const Classification c = classify_proxy(chosen);
-        const double margin = part_margin(chosen);
         const int added = static_cast<int>(proxies_.size());
         // The smaller part leaves: it is the one a neighbour may take.
-        const int minor = chosen_parts.weight[0] < chosen_parts.weight[1] ? 0 : 1, minor_side = minor == 0 ? 1 : -1;
+        const int minor = chosen_parts.weight[0] < chosen_parts.weight[1] ? 0 : 1;
+        const std::vector<int> leaving = faces_on_side(chosen, minor == 0 ? 1 : -1);
         add_proxy(chosen_parts.best[minor]);
-        for (int f = 0; f < model_.face_count(); ++f)
-            if (labels_[f] == chosen && side_of(proxies_[chosen].quadric, f, c, margin) == minor_side) labels_[f] = added;
+        for (int f : leaving) labels_[f] = added;
         std::vector<char> changed(proxies_.size(), 0);
         changed[chosen] = changed[added] = 1;
         refit_regions(model_, labels_, options_, proxies_, changed);
@@ -796,15 +804,11 @@ void Lloyd::release_minor_parts() {
         if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() || invalid(i, &p)) continue;
         const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
         if (p.count[minor] == 0) continue;
-        const int minor_side = minor == 0 ? 1 : -1;
-        const Quadric q = proxies_[i].quadric;
-        const Classification c = classify_proxy(i);
-        const double margin = part_margin(i);
         // Only a strip one facet wide: a column of a ruled band's tessellation lies exactly
         // on a plane, which makes the pair; a compact second part is a shape of its own.
-        std::vector<int> on_minor(model_.face_count(), 0), strip;
-        for (int f = 0; f < model_.face_count(); ++f)
-            if (labels_[f] == i && side_of(q, f, c, margin) == minor_side) on_minor[f] = 1, strip.push_back(f);
+        const std::vector<int> strip = faces_on_side(i, minor == 0 ? 1 : -1);
+        std::vector<int> on_minor(model_.face_count(), 0);
+        for (int f : strip) on_minor[f] = 1;
         if (!is_strip(model_, on_minor, strip, 0)) continue;
         const Snapshot before{labels_, proxies_, energy_};
         std::vector<char> changed(proxies_.size(), 0);

@@ -244,6 +244,8 @@ private:
     // Which part of q (classified as `c`) a face lies on: ±1, or 0.
     int side_of(const Quadric& q, int face, const Classification& c, double margin) const;
     double part_margin(int proxy) const;
+    // The faces of a region on one part of its quadric (side ±1, as side_of).
+    std::vector<int> faces_on_side(int proxy, int side) const;
     // Adjacent regions on one surface (their union fits as well as they do apart, or, when
     // `within_noise`, within their noise). At a count the user chose, both: the noise alone
     // must not take away a face it blurs (a thin plate's side), nor fitting as well as apart

@@ -104,11 +104,11 @@ struct Measurement::Sweep {
                 const Vec3 p = (1 - r1) * from[tri[0]] + r1 * (1 - r2) * from[tri[1]] + r1 * r2 * from[tri[2]];
                 const double d = to.nearest(p, hinted ? static_cast<int>(t) : -1).distance;
                 const double interpolated = (1 - r1) * s[tri[0]] + r1 * (1 - r2) * s[tri[1]] + r1 * r2 * s[tri[2]];
-                const double h = interpolated * interpolated;
-                const Eigen::Vector3d u(weight * d * d, weight * (h - surface.interpolated_mean), weight);
+                const double h = interpolated * interpolated, g = h - surface.interpolated_mean;
+                const Eigen::Vector3d u(weight * d * d, weight * g, weight);
                 if (total.count > 0) differences += (u - last) * (u - last).transpose();
                 last = u;
-                total.add(d, h - surface.interpolated_mean, weight);
+                total.add(d, g, weight);
                 if (labels && (*labels)[t] >= 0)
                     regions[(*labels)[t]].add(d, h - surface.region_interpolated_mean[(*labels)[t]], weight);
             }
