@@ -7,7 +7,7 @@
 #   --cgal      also CGAL (the planar VSA peer of the benchmark; never needed by the app or the tests)
 set -euo pipefail
 
-packages=(cmake g++ make libgtest-dev libeigen3-dev libtinygltf-dev nlohmann-json3-dev libboost-graph-dev)
+packages=(cmake g++ make libgtest-dev libeigen3-dev libtinygltf-dev nlohmann-json3-dev libfast-float-dev libboost-graph-dev)
 for flag in "$@"; do
   case "$flag" in
     --wasm) packages+=(emscripten) ;;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <string>
 
 using namespace vqsa;
@@ -50,7 +52,22 @@ TEST(TextTokenizer, NumbersMustBeWholeTokens) {
     EXPECT_EQ(d, -125);
     EXPECT_FALSE(parse_double("1.0f", d));
     EXPECT_FALSE(parse_double("", d));
-    EXPECT_FALSE(parse_double(std::string(100, '1'), d));  // longer than any number, not truncated
+    // Every digit counts, however many: a prefix that parses is no number.
+    EXPECT_TRUE(parse_double(std::string(100, '1'), d));
+    EXPECT_EQ(d, 1.1111111111111111e99);
+    EXPECT_FALSE(parse_double(std::string(100, '1') + "x", d));
+    // strtod's forms that files carry: a leading '+', either exponent sign, inf.
+    EXPECT_TRUE(parse_double("+0.5e+1", d));
+    EXPECT_EQ(d, 5);
+    EXPECT_FALSE(parse_double("+-1", d));
+    EXPECT_FALSE(parse_double("+", d));
+    EXPECT_TRUE(parse_double("-inf", d));
+    EXPECT_TRUE(std::isinf(d));
+    // Rounded correctly, as strtod does: halfway between two doubles, to the even one.
+    EXPECT_TRUE(parse_double("9007199254740993", d));
+    EXPECT_EQ(d, 9007199254740992.0);
+    EXPECT_TRUE(parse_double("0.1", d));
+    EXPECT_EQ(d, std::strtod("0.1", nullptr));
     // A NUL byte inside a token ends no token and makes no number (a fuzzer finding).
     EXPECT_FALSE(parse_double(std::string("1\0" "2", 3), d));
     EXPECT_TRUE(parse_integer("-42", i));

@@ -1,5 +1,7 @@
 #include "io/text_tokenizer.h"
 
+#include <fast_float/fast_float.h>
+
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -75,13 +77,14 @@ void TextTokenizer::fail(const std::string& message) const {
 }
 
 bool parse_double(std::string_view token, double& value) {
-    char buffer[64];
-    if (token.empty() || token.size() >= sizeof buffer) return false;
-    std::memcpy(buffer, token.data(), token.size());
-    buffer[token.size()] = '\0';
-    char* end = nullptr;
-    value = std::strtod(buffer, &end);
-    return end == buffer + token.size();
+    // Not strtod: musl's (the WASM build's C library) computes in 128-bit long double,
+    // which WebAssembly emulates in software (text meshes loaded 3x slower than natively);
+    // fast_float rounds the same, correctly. It takes no leading '+', which strtod did.
+    const char* first = token.data();
+    const char* const last = first + token.size();
+    if (token.size() > 1 && token[0] == '+' && token[1] != '-') ++first;
+    const fast_float::from_chars_result result = fast_float::from_chars(first, last, value);
+    return result.ec == std::errc() && result.ptr == last;
 }
 
 bool parse_integer(std::string_view token, std::int64_t& value) {
