@@ -286,7 +286,7 @@ TEST(Readers, BadInputGivesAClearErrorNamingTheFile) {
         read_mesh_file(VQSA_SHARED_MESHES);
         FAIL() << "no error";
     } catch (const MeshReadError& e) {
-        EXPECT_NE(std::string(e.what()).find("cannot"), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()), std::string(VQSA_SHARED_MESHES) + ": is a directory, not a mesh file");
     }
 }
 

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <vector>
 
 namespace vqsa {
 
@@ -53,15 +54,20 @@ Mesh read_mesh(std::string_view name, const std::uint8_t* data, std::size_t size
 }
 
 Mesh read_mesh_file(const std::string& path) {
+    // Asked first: under node (NODERAWFS) a directory opens and reads as an empty file.
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored)) throw MeshReadError(path + ": is a directory, not a mesh file");
     std::ifstream file(path, std::ios::binary);
     if (!file) throw MeshReadError(path + ": cannot open the file");
+    // In large chunks: an istreambuf_iterator appends byte by byte (0.6 s of the WASM CLI's
+    // 1.5 s load of a 79 MB OFF).
     std::string bytes;
-    try {
-        bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
-    } catch (const std::exception&) {
-        file.setstate(std::ios::badbit);
+    std::vector<char> chunk(1 << 20);
+    while (file) {
+        file.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+        bytes.append(chunk.data(), static_cast<std::size_t>(file.gcount()));
     }
-    if (file.bad()) throw MeshReadError(path + ": cannot read the file (a directory?)");
+    if (file.bad()) throw MeshReadError(path + ": cannot read the file");
     return read(path, bytes, directory_of(path));
 }
 
