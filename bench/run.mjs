@@ -76,10 +76,15 @@ const rows = [];
 runWasm(readFileSync(join(meshes, 'fandisk.off')), 'fandisk.off', 22);  // V8 tiers the module up on a first run
 for (const [file, proxies, paperLloyd, paperPost] of paperCases) {
   log(`table: ${file}/${proxies}`);
-  const reports = Array.from({ length: RUNS }, () => runNative(join(meshes, file), proxies));
+  // Native, WASM and the peer take turns (the load of a shared machine drifts over minutes).
   const bytes = readFileSync(join(meshes, file));
-  const wasm = Array.from({ length: RUNS }, () => runWasm(bytes, file, proxies));
-  const planar = runPeer(file, proxies, RUNS);
+  const reports = [], wasm = [], peers = [];
+  for (let i = 0; i < RUNS; ++i) {
+    reports.push(runNative(join(meshes, file), proxies));
+    wasm.push(runWasm(bytes, file, proxies));
+    peers.push(runPeer(file, proxies, 1));
+  }
+  const planar = { ...peers[0], vsa_s: median(peers.map((p) => p.vsa_s)), meshing_s: median(peers.map((p) => p.meshing_s)) };
   const r = reports[0];
   const types = {};
   for (const p of r.proxies) types[p.type] = (types[p.type] ?? 0) + 1;
@@ -250,7 +255,7 @@ const lines = [];
 const row = (cells) => lines.push(`| ${cells.join(' | ')} |`);
 lines.push('# vqsa benchmark results', '',
   `Written by \`npm run bench\` on ${new Date().toISOString().slice(0, 10)}, machine: ${machine}.`,
-  `Times are medians of ${RUNS} runs (the scaling rows above 160K faces: one run); errors are deterministic.`,
+  `Times are medians of ${RUNS} runs (the scaling rows above 160K faces: one run), the compared programs run in turn; errors are deterministic.`,
   'The planar VSA peer is CGAL 5.5 `Variational_shape_approximation` (L21 metric, hierarchical seeding, 20',
   'iterations; Debian libcgal-dev, installed by the benchmark only) through `bench/planar_vsa.cpp`; its output mesh',
   '(anchors and triangles) is measured with vqsa\'s own metric code. Errors: symmetric RMS and Hausdorff distance',
