@@ -6,7 +6,9 @@
 #include "examples.h"
 #include "ground_truth.h"
 #include "fitting/special_fit.h"
+#include "geometry/model.h"
 #include "io/mesh_io.h"
+#include "lloyd/lloyd.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -489,4 +491,21 @@ TEST(CadExtraction, AboveTheTrueCountNoSliverIsLeft) {
         EXPECT_EQ(r.proxies.size(), 5u) << axle;
         EXPECT_EQ(r.stop_reason, StopReason::fitted) << axle;
     }
+}
+
+TEST(CadExtraction, AboveTheTrueCountGrowthStopsOnceInsertionsBuyNothing) {
+    // The turned part is exact at a dozen proxies; asked for 50, the run went on inserting
+    // up to 50 (pieces of exact surfaces, as good as whole), tried its teleports and merged
+    // the pieces back: twice the Lloyd iterations for the same 6 surfaces. Three insertions
+    // in a row that buy nothing, every region within `precision`, end the growth.
+    const Model model = make_model(example_mesh("turned_part:40000"));
+    LloydOptions options;
+    options.proxies = 50;
+    Lloyd lloyd(model, options);
+    std::size_t most = 0;
+    while (lloyd.step()) most = std::max(most, lloyd.proxies().size());
+    EXPECT_EQ(lloyd.stop_reason(), StopReason::fitted);
+    EXPECT_EQ(lloyd.proxies().size(), 6u);
+    EXPECT_LT(lloyd.rms(), 1e-4);  // the facets' sagitta; a region over two surfaces leaves 1e-2
+    EXPECT_LT(most, 30u);  // 51 before (50, and one more for each teleport)
 }

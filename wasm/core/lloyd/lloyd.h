@@ -261,6 +261,7 @@ private:
     // Undoes the last finishing merge if, Lloyd settled, it left more error unexplained
     // than the noise it was allowed.
     void undo_unpaid_merge();
+    bool fitted_below_target();  // below a target count: whether insertions stopped paying on an exact fit
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
     bool merge_handful();
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
@@ -342,7 +343,7 @@ private:
     bool iterating_ = false;
     bool teleport_pending_ = false;
     bool finishing_ = false;              // automatic count: no more insertions, merges only
-    double energy_before_insert_ = -1;    // automatic count: to judge the last insertion (-1: none)
+    double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
     int unpaid_ = 0;  // insertions in a row that did not pay
     StopReason finish_reason_ = StopReason::none;
