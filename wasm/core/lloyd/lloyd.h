@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace vqsa {
@@ -346,6 +347,7 @@ private:
     double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
     int unpaid_ = 0;  // insertions in a row that did not pay
+    double least_before_insert_ = std::numeric_limits<double>::infinity();  // below a target count
     StopReason finish_reason_ = StopReason::none;
     // The last finishing merge (automatic count), until it is judged.
     struct PendingMerge {
