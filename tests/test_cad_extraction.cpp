@@ -497,7 +497,7 @@ TEST(CadExtraction, AboveTheTrueCountGrowthStopsOnceInsertionsBuyNothing) {
     // The turned part is exact at a dozen proxies; asked for 50, the run went on inserting
     // up to 50 (pieces of exact surfaces, as good as whole), tried its teleports and merged
     // the pieces back: twice the Lloyd iterations for the same 6 surfaces. Three insertions
-    // in a row that buy nothing, every region within `precision`, end the growth.
+    // in a row that buy nothing, every region explained, end the growth.
     const Model model = make_model(example_mesh("turned_part:40000"));
     LloydOptions options;
     options.proxies = 50;

@@ -433,10 +433,7 @@ bool Lloyd::fitted_below_target() {
     if (energy_before_insert_ < 0) return false;
     least_before_insert_ = std::min(least_before_insert_, energy_before_insert_);
     unpaid_ = energy_ < least_before_insert_ * (1 - options_.convergence) ? 0 : unpaid_ + 1;
-    if (unpaid_ < 3) return false;
-    for (int i = 0; i < static_cast<int>(proxies_.size()); ++i)
-        if (!explained(i)) return false;
-    return true;
+    return unpaid_ >= 3 && every_region_explained();
 }
 
 bool Lloyd::decide_finish() {
@@ -447,11 +444,8 @@ bool Lloyd::decide_finish() {
         if (energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_)) unpaid_ = 0;
         else if (++unpaid_ >= 3) finishing_ = true, finish_reason_ = StopReason::no_gain;
     }
-    if (!finishing_) {
-        bool all_explained = misfit_charts().empty() && misfit_clusters().empty();
-        for (int i = 0; i < static_cast<int>(proxies_.size()) && all_explained; ++i) all_explained = explained(i);
-        if (all_explained) finishing_ = true, finish_reason_ = StopReason::fitted;
-    }
+    if (!finishing_ && misfit_charts().empty() && misfit_clusters().empty() && every_region_explained())
+        finishing_ = true, finish_reason_ = StopReason::fitted;
     if (!finishing_) return false;
     finish();
     return true;
@@ -532,6 +526,12 @@ void Lloyd::undo_unpaid_merge() {
 }
 
 bool Lloyd::explained(int proxy) const { return proxies_[proxy].error <= allowance(proxy); }
+
+bool Lloyd::every_region_explained() const {
+    for (int i = 0; i < static_cast<int>(proxies_.size()); ++i)
+        if (!explained(i)) return false;
+    return true;
+}
 
 std::vector<char> Lloyd::owned_charts() const {
     // A chart is owned by a proxy seeded in it whose region holds at least half of it.

@@ -199,6 +199,7 @@ private:
     // Σ A (noise_factor · roughness)² over a region: the energy the noise explains.
     double noise_energy(int proxy) const;
     bool explained(int proxy) const;
+    bool every_region_explained() const;
     // Per chart: whether a proxy seeded in it holds at least half of it.
     std::vector<char> owned_charts() const;
     // Charts without a seed whose faces fit worse than the noise explains, worst first.
@@ -262,7 +263,9 @@ private:
     // Undoes the last finishing merge if, Lloyd settled, it left more error unexplained
     // than the noise it was allowed.
     void undo_unpaid_merge();
-    bool fitted_below_target();  // below a target count: whether insertions stopped paying on an exact fit
+    // Below a target count: judges the last insertion, then whether insertions have stopped
+    // paying with every region explained.
+    bool fitted_below_target();
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
     bool merge_handful();
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
