@@ -162,7 +162,8 @@ export function createViewer(host, options = {}) {
   let live = null;            // labels during a run
   let result = null;          // the last result
   let focused = -1, pinned = false;
-  let history = [];           // [proxies, rms] during the run
+  let growth = [];            // [proxies, rms] of the partitions the run settled on
+  let ending = null;          // [proxies, rms] of the run's result
   let scrubbed = null;        // the timeline's frame shown instead of the result
   let busy = false;
 
@@ -406,7 +407,8 @@ export function createViewer(host, options = {}) {
   function forgetResult() {
     result = null;
     showEdits();
-    history = [];
+    growth = [];
+    ending = null;
     scrubbed = null;
     timeline.clear();
     focused = -1;
@@ -420,7 +422,7 @@ export function createViewer(host, options = {}) {
     mesh = { ...loaded, name };
     forgetResult();
     live = null;
-    drawPlot(plot, history);
+    drawPlot(plot, growth);
     shownGeometry = null;
     showView();
     scene.frame();
@@ -507,7 +509,9 @@ export function createViewer(host, options = {}) {
     live = p.labels;
     timeline.record({ labels: p.labels, proxies: p.proxies, rms: p.rms, stage: p.stage, phase: p.phase, iteration: p.iteration });
     host.dataset.proxies = String(p.proxies);
-    if (p.stage === 'lloyd') history.push([p.proxies, p.rms]);
+    // The curve: each partition Lloyd settled on (the error right after an operation has not
+    // settled yet).
+    if (p.settledProxies > 0) growth.push([p.settledProxies, p.settledRms]);
     setStatus(p.stage === 'lloyd'
       ? `${p.phase} · ${p.proxies} proxies · iteration ${p.iteration} · RMS ${format(p.rms)}`
       : `${p.stage} ${Math.round(100 * p.fraction)} % · ${p.proxies} proxies`, runFraction(p));
@@ -518,7 +522,7 @@ export function createViewer(host, options = {}) {
       paintQueued = true;
       requestAnimationFrame(() => {
         paintQueued = false;
-        if (live) paint(), drawPlot(plot, history);
+        if (live) paint(), drawPlot(plot, growth);
       });
     }
     api.dispatchEvent(new CustomEvent('progress', { detail: p }));
@@ -544,12 +548,12 @@ export function createViewer(host, options = {}) {
     setStatus(summary(), 1);
     const rms = result.reportObject.rms_error_relative;
     if (!edited) {
-      history.push([done.proxies.length, rms]);
+      ending = [done.proxies.length, rms];
       timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms });
       timeline.finish();
     }
     // An edited result is marked on the run's curve.
-    drawPlot(plot, history, edited ? [done.proxies.length, rms] : null);
+    drawPlot(plot, growth, ending, edited ? [done.proxies.length, rms] : null);
     fillTable();
     showEdits();
     showView();
@@ -571,7 +575,7 @@ export function createViewer(host, options = {}) {
     showView();
     applyVisibility();
     const edited = result?.reportObject?.edits?.length ? [result.proxies.length, result.reportObject.rms_error_relative] : null;
-    drawPlot(plot, history, frame ? [frame.proxies, frame.rms] : edited);
+    drawPlot(plot, growth, ending, frame ? [frame.proxies, frame.rms] : edited);
   }
 
   // `overrides`: options of the schema by their camelCase names; they stay set.
@@ -654,7 +658,7 @@ export function createViewer(host, options = {}) {
   pngButton.addEventListener('click', async () => download(await scene.screenshot(), `${baseName()}.vqsa.png`, 'image/png'));
   const detachDropZone = attachDropZone(options.dropTarget ?? host, host, (file) => load(file).then(runBrought));
 
-  drawPlot(plot, history);
+  drawPlot(plot, growth);
   fillTable();
   showEdits();
   setState('idle');

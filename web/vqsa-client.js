@@ -8,8 +8,8 @@
 //   const edited = await client.edit({ op: 'split', region: 3 });  // docs/EDITS.md; undo(), redo()
 //
 // load() resolves to {info, positions: Float32Array, triangles: Uint32Array, sourceFaces};
-// progress events carry {stage, phase, proxies, iteration, rms, fraction, labels: Int32Array
-// per triangle}; run() resolves to {report (JSON text), proxies, faceLabels, lloydFaceLabels,
+// progress events carry {stage, phase, proxies, iteration, rms, settledProxies, settledRms,
+// fraction, labels: Int32Array per triangle}; run() resolves to {report (JSON text), proxies, faceLabels, lloydFaceLabels,
 // projected, vertexErrors, progress, history: {canUndo, canRedo}}, and so do
 // edit(), undo() and redo(). Options: the option schema's camelCase
 // names (vqsa-schema.js, as the CLI's flags). Errors carry `fatal` when the engine itself

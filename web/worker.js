@@ -3,7 +3,8 @@
 //        | {type:'edit', id, edit} (docs/EDITS.md) | {type:'undo', id} | {type:'redo', id}
 //        | {type:'glb', id, colours: 'region' | 'type'} (of the last result) | {type:'cancel'}
 //   out: {type:'loaded', id, info, positions, triangles, sourceFaces}
-//        {type:'progress', id, stage, phase, proxies, iteration, rms, fraction, labels}
+//        {type:'progress', id, stage, phase, proxies, iteration, rms, settledProxies, settledRms,
+//          fraction, labels}
 //          (each new stage and operation, else ≤ 25 per second)
 //        {type:'result', id, ..., history: {canUndo, canRedo}}
 //          (after a run, an edit, an undo or a redo)  {type:'glb', id, glb}
@@ -42,20 +43,22 @@ function progress(id) {
 // Steps the run or edit the session has started to its end, then posts the result.
 async function drive(id) {
   cancelRequested = false;
-  let lastPost = 0, lastPhase = '', lastStage = '';
+  let lastPost = 0, lastStage = '', lastOperation = '';
   for (let more = true; more;) {
     more = session.stepFor(SLICE_MS);
     const p = session.progress();
     const now = performance.now();
-    // A new stage and operations (insert, split, merge, teleport) always show; Lloyd
-    // iterations and progress within a stage are throttled.
-    const operation = p.phase !== lastPhase && !['lloyd', 'smooth'].includes(p.phase);
-    if (more && (operation || p.stage !== lastStage || now - lastPost >= PROGRESS_INTERVAL_MS)) {
+    // A new stage and every operation (insert, split, merge, teleport) show: a slice ends
+    // right after one, and on a small mesh every slice does, so the plot gets each count the
+    // run passes through. Lloyd iterations, an edit's steps and progress within a stage are
+    // throttled.
+    const operation = p.stage === 'lloyd' && p.phase !== 'lloyd' ? `${p.phase} ${p.proxies} ${p.iteration}` : '';
+    if (more && ((operation && operation !== lastOperation) || p.stage !== lastStage || now - lastPost >= PROGRESS_INTERVAL_MS)) {
       progress(id);
       lastPost = now;
     }
-    lastPhase = p.phase;
     lastStage = p.stage;
+    lastOperation = operation;
     await yieldToEvents();
     if (cancelRequested && more) {
       session.cancel();

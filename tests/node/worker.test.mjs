@@ -2,6 +2,7 @@
 // 100K-face part (each stage steps in pieces of bounded time), and the worker stays usable.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
+import { loadVqsa } from '../../wasm/node/load.mjs';
 import { cancelLatencies, startWorker } from './support.mjs';
 
 test('a cancel is acknowledged within 100 ms in every stage', async (t) => {
@@ -63,6 +64,48 @@ test('edits through the worker: results with their history, errors that keep the
     assert.deepEqual(redone.faceLabels, merged.faceLabels);
     const nothing = await worker.request({ type: 'redo' });
     assert.match(nothing.message, /nothing to redo/);
+  } finally {
+    worker.terminate();
+  }
+});
+
+// The plot of RMS against proxy count draws the partitions the run settled on from progress
+// events: each must reach the page, however many operations fit in one time slice.
+test('progress carries every partition the run settled on, with its count and error', async () => {
+  const vqsa = await loadVqsa();
+  const session = new vqsa.Session();
+  session.loadExample('turned_part');
+  session.start({ proxies: 50 });
+  // A zero-length slice is one step of the engine. Each operation follows a settle, and
+  // reports that partition's count and error: the last Lloyd iteration's.
+  const settles = [];
+  let iterated = null;
+  while (session.stepFor(0)) {
+    const p = session.progress();
+    if (p.stage !== 'lloyd') continue;
+    if (p.phase === 'lloyd') iterated = [p.proxies, p.rms];
+    else if (iterated) {
+      assert.deepEqual([p.settledProxies, p.settledRms], iterated, `${p.phase} at iteration ${p.iteration}`);
+      settles.push(iterated);
+      iterated = null;
+    }
+  }
+  session.delete();
+  // It grows past the part's 6 surfaces before it merges back.
+  assert.ok(settles.length >= 10 && Math.max(...settles.map(([n]) => n)) > 6, JSON.stringify(settles));
+
+  const worker = startWorker();
+  try {
+    await worker.request({ type: 'example', name: 'turned_part' });
+    const seen = [];
+    worker.onProgress = (p) => {
+      const last = seen.at(-1);
+      if (p.settledProxies > 0 && !(last && last[0] === p.settledProxies && last[1] === p.settledRms))
+        seen.push([p.settledProxies, p.settledRms]);
+    };
+    const done = await worker.request({ type: 'run', options: { proxies: 50 } });
+    assert.equal(done.type, 'result');
+    assert.deepEqual(seen, settles);
   } finally {
     worker.terminate();
   }

@@ -145,6 +145,8 @@ public:
             out.set("proxies", now.proxies);
             out.set("iteration", now.iterations);
             out.set("rms", now.rms);
+            out.set("settledProxies", now.settled_proxies);
+            out.set("settledRms", now.settled_rms);
             out.set("fraction", now.fraction);
             out.set("done", p.done());
             return out;

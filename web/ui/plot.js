@@ -1,7 +1,8 @@
 // The RMS error against the proxy count, on a log scale: the paper's progressive
-// insertion as a curve. `history`: [count, rms] pairs in the order seen.
-// `marker`: a [count, rms] to circle (the timeline's state), or null.
-export function drawPlot(canvas, history, marker = null) {
+// insertion as a curve. `growth`: [count, rms] of the partitions the run settled on;
+// `result`: the run's [count, rms], a ring (a run may merge back below the counts it grew
+// through); `marker`: a [count, rms] to mark (the timeline's state, an edited result), or null.
+export function drawPlot(canvas, growth, result = null, marker = null) {
   const g = canvas.getContext('2d'), w = canvas.width, h = canvas.height, pad = 26;
   // The theme's colours (viewer.css), light or dark.
   const style = getComputedStyle(canvas), colour = (name, fallback) => style.getPropertyValue(name).trim() || fallback;
@@ -12,15 +13,15 @@ export function drawPlot(canvas, history, marker = null) {
   g.strokeStyle = frame;
   g.strokeRect(pad, 6, w - pad - 6, h - pad);
   // The least error reached at each count, by count: a count is passed through more than
-  // once (splits, merges, teleports), and right after an operation the error has not
-  // settled yet.
+  // once (splits, merges, teleports).
   const least = new Map();
-  for (const [n, rms] of history) if (rms > 0 && !(least.get(n) <= rms)) least.set(n, rms);
+  for (const [n, rms] of growth) if (rms > 0 && !(least.get(n) <= rms)) least.set(n, rms);
   const points = [...least].sort((a, b) => a[0] - b[0]);
   if (points.length < 2) return;
-  // The axes hold the marker too (an edited result may have more proxies, or another error,
-  // than the run passed through).
-  const shown = marker && marker[1] > 0 ? [...points, marker] : points;
+  // The axes hold the result and the marker too (an edited result may have more proxies,
+  // or another error, than the run passed through).
+  const dots = [result, marker].filter((d) => d && d[1] > 0);
+  const shown = [...points, ...dots];
   const maxN = Math.max(...shown.map(([n]) => n)), logs = shown.map(([, r]) => Math.log10(r));
   const lo = Math.floor(Math.min(...logs)), hi = Math.ceil(Math.max(...logs)) + (Math.min(...logs) === Math.max(...logs) ? 1 : 0);
   const x = (n) => pad + ((n - 1) / Math.max(1, maxN - 1)) * (w - pad - 8);
@@ -35,6 +36,11 @@ export function drawPlot(canvas, history, marker = null) {
   g.beginPath();
   points.forEach(([n, r], i) => (i ? g.lineTo(x(n), y(r)) : g.moveTo(x(n), y(r))));
   g.stroke();
+  if (result && result[1] > 0) {
+    g.beginPath();
+    g.arc(x(result[0]), y(result[1]), 3.5, 0, 2 * Math.PI);
+    g.stroke();
+  }
   if (marker && marker[1] > 0) {
     g.fillStyle = '#d0402a';
     g.beginPath();

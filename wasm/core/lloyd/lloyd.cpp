@@ -258,7 +258,10 @@ bool Lloyd::step() {
         iterate();
         last_operation_ = Operation::iterate;
         const bool settled = stage_iteration_ >= 2 && energy_ >= previous_energy_ * (1 - options_.convergence);
-        if (settled || stage_iteration_ >= options_.stage_iterations) iterating_ = false;
+        if (settled || stage_iteration_ >= options_.stage_iterations) {
+            iterating_ = false;
+            settled_ = {static_cast<int>(proxies_.size()), rms()};
+        }
         previous_energy_ = energy_;
         return true;
     }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace vqsa {
@@ -163,6 +164,10 @@ public:
     const std::vector<double>& errors() const { return errors_; }
     double energy() const { return energy_; }  // Σ d(t, P) over the mesh (unit frame)
     double rms() const;                         // relative to the longest bounding-box side
+    // The proxy count and RMS of the partition Lloyd last settled on (converged, or at the
+    // iteration cap of an operation), before the operation that followed: one point per
+    // settle of the curve of error against count. {0, 0} before the first settle.
+    std::pair<int, double> settled() const { return settled_; }
     // How far the stage is, in [0, 1] (by proxy count when there is a target).
     double fraction() const;
     const Features& features() const { return features_; }
@@ -334,6 +339,7 @@ private:
     std::vector<double> errors_;
     double energy_ = 0;
     double previous_energy_ = 0;
+    std::pair<int, double> settled_{0, 0.0};
     int stage_iteration_ = 0;
     int iterations_ = 0;
     int teleports_left_ = 0;

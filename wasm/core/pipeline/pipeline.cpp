@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 namespace vqsa {
 
@@ -450,6 +451,7 @@ Progress Pipeline::progress() const {
     if (current_ == 0 && !editing_ && !done()) {
         p.proxies = lloyd ? static_cast<int>(lloyd->proxies().size()) : 0;
         p.rms = lloyd ? lloyd->rms() : 0;
+        if (lloyd) std::tie(p.settled_proxies, p.settled_rms) = lloyd->settled();
     } else {
         p.proxies = static_cast<int>(state_.proxies.size());
         p.rms = model().total_area > 0 ? std::sqrt(std::max(0.0, state_.energy) / model().total_area) : 0;

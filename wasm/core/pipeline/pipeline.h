@@ -27,6 +27,12 @@ struct Progress {
     int iterations = 0;    // Lloyd iterations so far
     double rms = 0;        // RMS distance over the longest bounding-box side
     double fraction = 0;   // of the current stage, in [0, 1]
+    // The count and RMS of the partition the Lloyd stage last settled on, before the
+    // operation that followed (an operation reports its new count with the error of the
+    // partition it started from): the points of the curve of error against count. 0 outside
+    // a run's Lloyd stage.
+    int settled_proxies = 0;
+    double settled_rms = 0;
 };
 
 // Return false to cancel.
