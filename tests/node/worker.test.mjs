@@ -76,14 +76,14 @@ test('progress carries every partition the run settled on, with its count and er
   const session = new vqsa.Session();
   session.loadExample('turned_part');
   session.start({ proxies: 50 });
-  // A zero-length slice is one step of the engine. Each operation follows a settle, and
-  // reports that partition's count and error: the last Lloyd iteration's.
+  // A zero-length slice is one step of the engine. Each operation follows a settle, and so
+  // does the stage's end: they report that partition's count and error, the last Lloyd
+  // iteration's.
   const settles = [];
   let iterated = null;
   while (session.stepFor(0)) {
     const p = session.progress();
-    if (p.stage !== 'lloyd') continue;
-    if (p.phase === 'lloyd') iterated = [p.proxies, p.rms];
+    if (p.stage === 'lloyd' && p.phase === 'lloyd') iterated = [p.proxies, p.rms];
     else if (iterated) {
       assert.deepEqual([p.settledProxies, p.settledRms], iterated, `${p.phase} at iteration ${p.iteration}`);
       settles.push(iterated);

@@ -67,6 +67,7 @@ public:
         state_.labels = state_.lloyd_labels = lloyd_->labels();
         state_.proxies = lloyd_->proxies();
         state_.energy = lloyd_->energy();
+        state_.settled = lloyd_->settled();
         if (options_.init == Initialization::features) state_.crease = lloyd_->features().crease;
         lloyd_.reset();  // a finished stage's working memory goes (on large meshes, hundreds of MB)
         return false;
@@ -451,11 +452,11 @@ Progress Pipeline::progress() const {
     if (current_ == 0 && !editing_ && !done()) {
         p.proxies = lloyd ? static_cast<int>(lloyd->proxies().size()) : 0;
         p.rms = lloyd ? lloyd->rms() : 0;
-        if (lloyd) std::tie(p.settled_proxies, p.settled_rms) = lloyd->settled();
     } else {
         p.proxies = static_cast<int>(state_.proxies.size());
         p.rms = model().total_area > 0 ? std::sqrt(std::max(0.0, state_.energy) / model().total_area) : 0;
     }
+    std::tie(p.settled_proxies, p.settled_rms) = lloyd ? lloyd->settled() : state_.settled;
     p.fraction = done() ? 1 : stages_[current_]->fraction();
     return p;
 }

@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace vqsa {
@@ -27,10 +28,10 @@ struct Progress {
     int iterations = 0;    // Lloyd iterations so far
     double rms = 0;        // RMS distance over the longest bounding-box side
     double fraction = 0;   // of the current stage, in [0, 1]
-    // The count and RMS of the partition the Lloyd stage last settled on, before the
+    // The count and RMS of the partition the run's Lloyd stage last settled on, before the
     // operation that followed (an operation reports its new count with the error of the
-    // partition it started from): the points of the curve of error against count. 0 outside
-    // a run's Lloyd stage.
+    // partition it started from): the points of the curve of error against count. After
+    // the stage, its last; 0 before the first settle.
     int settled_proxies = 0;
     double settled_rms = 0;
 };
@@ -89,6 +90,7 @@ public:
         double energy = 0;
         StopReason stop_reason = StopReason::none;
         int iterations = 0;
+        std::pair<int, double> settled{0, 0.0};  // Lloyd::settled at the end of the stage
         const char* phase = "initialize";
         std::vector<Vec3> projected;  // unit frame
         std::optional<Metrics> metrics;
