@@ -1,7 +1,7 @@
 // The RMS error against the proxy count, on a log scale: the paper's progressive
-// insertion as a curve. `growth`: [count, rms] of the partitions the run settled on;
-// `result`: the run's [count, rms], a ring (a run may merge back below the counts it grew
-// through); `marker`: a [count, rms] to mark (the timeline's state, an edited result), or null.
+// insertion as a curve (the least error with each count or fewer). `growth`: [count, rms]
+// of the partitions the run settled on; `result`: the run's [count, rms], a ring; `marker`:
+// a [count, rms] to mark (the timeline's state, an edited result), or null.
 export function drawPlot(canvas, growth, result = null, marker = null) {
   const g = canvas.getContext('2d'), w = canvas.width, h = canvas.height, pad = 26;
   // The theme's colours (viewer.css), light or dark.
@@ -12,11 +12,14 @@ export function drawPlot(canvas, growth, result = null, marker = null) {
   g.fillRect(0, 0, w, h);
   g.strokeStyle = frame;
   g.strokeRect(pad, 6, w - pad - 6, h - pad);
-  // The least error reached at each count, by count: a count is passed through more than
-  // once (splits, merges, teleports).
+  // The least error reached with each count or fewer: a count is passed through more than
+  // once (splits, merges, teleports), and a run that merges back (the surfaces found, the
+  // extra proxies merged away) reaches at a lower count an error its growth reached only
+  // later: drawn as it was reached, the curve would dip there.
   const least = new Map();
   for (const [n, rms] of growth) if (rms > 0 && !(least.get(n) <= rms)) least.set(n, rms);
   const points = [...least].sort((a, b) => a[0] - b[0]);
+  for (let i = 1; i < points.length; ++i) points[i][1] = Math.min(points[i][1], points[i - 1][1]);
   if (points.length < 2) return;
   // The axes hold the result and the marker too (an edited result may have more proxies,
   // or another error, than the run passed through).
@@ -30,6 +33,7 @@ export function drawPlot(canvas, growth, result = null, marker = null) {
   g.font = '10px sans-serif';
   for (let e = lo; e <= hi; ++e) g.fillText(`1e${e}`, 0, y(10 ** e) + 3);
   g.fillText('proxies', w / 2 - 15, h - 4);
+  g.fillText('1', pad - 2, h - 14);
   g.fillText(String(maxN), w - 22, h - 14);
   g.strokeStyle = colour('--vqsa-accent', '#2864c8');
   g.lineWidth = 1.5;
