@@ -930,13 +930,15 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
     // well as its own fit does (within a quarter), or (`within_noise`) within the noise of
     // its faces; otherwise both: as well as apart, and within `precision` (an exact surface)
     // or within the noise (two pieces of a noisy plate's face). Each part is judged alone,
-    // so that a small region's misfit does not hide in a large region's noise.
+    // so that a small region's misfit does not hide in a large region's noise; a part its
+    // faces do not place on the union's surface may be placed there by its vertices (a
+    // coarse tessellation's pieces, vertices_on_one_surface).
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     const RegionFaces faces = faces_by_region();
     struct Candidate {
         double cost;
         int pair;
-        Fit fit;
+        Union u;
         bool exact;
     };
     std::vector<Candidate> candidates;
@@ -952,7 +954,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
                                       : as_well_as_apart && (exact || within_their_noise);
         if (!one) continue;
         if (has_two_parts(classify_union(u).type)) continue;
-        candidates.push_back({united_error - parts, static_cast<int>(k), u.fit, exact});
+        candidates.push_back({united_error - parts, static_cast<int>(k), u, exact});
     }
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
@@ -962,10 +964,14 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         const auto [i, j] = pairs[c.pair];
         const std::pair<std::uint64_t, std::pair<int, int>> merge{state, pairs[c.pair]};
         if (std::find(rejected_merges_.begin(), rejected_merges_.end(), merge) != rejected_merges_.end()) continue;
-        if (!one_surface(c.fit.quadric, i, j, faces)) continue;
-        if (!c.exact && !keeps_type(i, j, c.fit.quadric, faces)) continue;
+        const Quadric& q = c.u.fit.quadric;
+        // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
+        const bool on_faces = one_surface(q, i, j, faces);
+        const bool on_vertices = !on_faces && vertices_on_one_surface(c.u, i, j, faces);
+        if (!on_faces && !on_vertices) continue;
+        if (!c.exact && !on_vertices && !keeps_type(i, j, q, faces)) continue;
         if (merged) *merged = pairs[c.pair];
-        merge_pair(i, j, c.fit);
+        merge_pair(i, j, c.u.fit);
         return true;
     }
     return false;
@@ -1018,6 +1024,37 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
         return false;
     return !bends_through_creases(q, faces[a], b) && !faces_both_ways(q, faces[a], faces[b]) && !strays(q, faces[a]) &&
            !strays(q, faces[b]);
+}
+
+bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const {
+    // A tessellation lays its faces inside a curved surface: a piece of a coarse cylinder
+    // fits a quadric bent to its own chords, and the union's quadric leaves each piece with
+    // several times its own error, as two surfaces would. Its vertices lie on the surface:
+    // when those of both regions fit one quadric ten times closer than their faces do (and
+    // within `precision`), the faces' error is their sag, not a second surface. Noise
+    // moves the vertices more than it moves the faces, which average it: never under noise.
+    std::vector<int> both = faces[a];
+    both.insert(both.end(), faces[b].begin(), faces[b].end());
+    const Samples s = region_samples(model_, both);
+    Moments vertex_moments{};
+    for (std::size_t k = 0; k < s.points.size(); ++k) add_to(vertex_moments, point_moments(s.points[k], s.weights[k]));
+    Union on_vertices{u.moments, fit_taubin(vertex_moments)};
+    const double limit = std::min(0.01 * u.fit.mean_squared, options_.precision * options_.precision);
+    if (!(on_vertices.fit.mean_squared <= limit)) return false;
+    // The faces of each must sag from it no more than the tessellation does (twice the
+    // median sagitta of the union's edges): a coarse plane disc's vertices all lie on the
+    // rim of the cylinder beside it, its flat faces cut across that cylinder.
+    const Quadric& q = on_vertices.fit.quadric;
+    FaceErrors evaluator;
+    evaluator.reset(model_, {q});
+    const double sag = 2 * s.tolerance;
+    for (int region : {a, b}) {
+        double error = 0;
+        for (int f : faces[region]) error += evaluator(f, 0);
+        if (!(error <= sag * sag * proxies_[region].area)) return false;
+    }
+    // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not.
+    return !faces_both_ways(q, faces[a], faces[b]) && !union_on_two_parts(on_vertices, a, b);
 }
 
 bool Lloyd::faces_both_ways(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b) const {

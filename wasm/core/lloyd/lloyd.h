@@ -284,6 +284,9 @@ private:
     bool keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const;
     // Whether q explains regions a and b as one surface (see merge_same_surface).
     bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const;
+    // Whether the vertices of regions a and b (union u) lie on one quadric, with one part
+    // under them, far closer than their faces do: a tessellation's surface (see lloyd.cpp).
+    bool vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const;
     // Whether `error`, the region's error against another quadric, says it lies on that
     // quadric's surface as well as on its own; for a `strip` (is_strip), as well as the
     // faces that quadric was fitted to: `reference` is their error per unit area.
