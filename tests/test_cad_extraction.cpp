@@ -275,6 +275,19 @@ TEST(CadExtraction, ACoarseExportsHolesAreOneRegionEach) {
     EXPECT_EQ(automatic.two_part, 0);
     const Outcome at_count = run(part, counted(static_cast<int>(part.surfaces.size()), options.seed));
     EXPECT_GE(at_count.accuracy, 0.99);
+
+    // The irregular L-bracket at that detail, at its true count: one general quadric took
+    // a plane with the fillet's facets beside it (accuracy 0.920); the fillet's pieces now
+    // join on their vertices and the plane stays a plane.
+    for (const CorpusCase& c : cad_corpus({"l_bracket"})) {
+        if (c.variant != "irregular") continue;
+        PartOptions coarse = c.options;
+        coarse.detail = 0.4;
+        const Part bracket = make_part("l_bracket", coarse);
+        const Outcome counted_bracket = run(bracket, counted(static_cast<int>(bracket.surfaces.size()), coarse.seed));
+        EXPECT_GE(counted_bracket.accuracy, 0.99);
+        EXPECT_EQ(counted_bracket.two_part, 0);
+    }
 }
 
 TEST(CadExtraction, ACoarseSpheresCapsAreNotTakenByTheFacesTheyCross) {

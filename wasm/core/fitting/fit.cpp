@@ -25,9 +25,11 @@ LocalMoments localize(const Moments& m) {
     return local;
 }
 
-Fit to_unit_frame(const Quadric& local_quadric, double mean_squared, const LocalMoments& local) {
+Fit to_unit_frame(const Fit& local_fit, const LocalMoments& local) {
     // q_local = (p - center) / radius, i.e. p = radius * q_local + center.
-    return {normalized(change_frame(local_quadric, local.radius, local.center)), mean_squared * local.radius * local.radius};
+    const double squared_scale = local.radius * local.radius;
+    return {normalized(change_frame(local_fit.quadric, local.radius, local.center)), local_fit.mean_squared * squared_scale,
+            local_fit.next_mean_squared * squared_scale};
 }
 
 // The quadric monomials' exponents, C0..C9.
@@ -67,7 +69,7 @@ Fit taubin_local(const LocalMoments& local, double regularization) {
     Quadric q;
     q.c[0] = -m0.dot(s);
     for (int i = 0; i < 9; ++i) q.c[i + 1] = s[i];
-    return {q, std::max(0.0, solver.eigenvalues()[0])};
+    return {q, std::max(0.0, solver.eigenvalues()[0]), std::max(0.0, solver.eigenvalues()[1])};
 }
 
 Fit plane_local(const LocalMoments& local) {
@@ -118,14 +120,12 @@ RegionFrame region_frame(const Moments& m) {
 
 Fit fit_taubin(const Moments& region) {
     const LocalMoments local = localize(region);
-    const Fit f = taubin_local(local, FitOptions{}.regularization);
-    return to_unit_frame(f.quadric, f.mean_squared, local);
+    return to_unit_frame(taubin_local(local, FitOptions{}.regularization), local);
 }
 
 Fit fit_plane(const Moments& region) {
     const LocalMoments local = localize(region);
-    const Fit f = plane_local(local);
-    return to_unit_frame(f.quadric, f.mean_squared, local);
+    return to_unit_frame(plane_local(local), local);
 }
 
 Fit fit_region(const Moments& region, const FitOptions& options) {
@@ -145,7 +145,7 @@ Fit fit_region(const Moments& region, const FitOptions& options) {
     const bool prefer_plane = double_plane ||
                               plane.mean_squared <= (1 + options.plane_tolerance) * quadric.mean_squared + negligible;
     const Fit& best = prefer_plane ? plane : quadric;
-    return to_unit_frame(best.quadric, best.mean_squared, local);
+    return to_unit_frame(best, local);
 }
 
 }  // namespace vqsa

@@ -28,6 +28,10 @@ RegionFrame region_frame(const Moments& region);
 struct Fit {
     Quadric quadric;         // in the moments' frame
     double mean_squared = 0;  // mean squared (first-order) distance to the surface over the region
+    // Taubin's fit: the same for the best quadric independent of this one (the pencil's
+    // second eigenvalue). About as small, and the region does not determine its quadric (a
+    // strip one face wide lies on many). 0 for the plane.
+    double next_mean_squared = 0;
 };
 
 // Taubin's fit: the generalised eigenvector of the smallest eigenvalue of M s = λ N s,

@@ -14,6 +14,15 @@
 
 namespace vqsa {
 
+namespace {
+
+// How far (RMS, relative to the longest bounding-box side) a tessellation's vertices may lie
+// off its surfaces and count as on them: what a mesh file's six or seven significant digits
+// keep. Noise, however small it is, moves them farther.
+constexpr double kStoredPrecision = 1e-6;
+
+}  // namespace
+
 const char* operation_name(Operation operation) {
     switch (operation) {
         case Operation::initialize: return "initialize";
@@ -940,6 +949,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         int pair;
         Union u;
         bool exact;
+        bool on_vertices;  // vertices_on_one_surface
     };
     std::vector<Candidate> candidates;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -952,9 +962,10 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         const bool exact = united_error <= u.moments[0] * options_.precision * options_.precision;
         const bool one = within_noise ? as_well_as_apart || within_their_noise
                                       : as_well_as_apart && (exact || within_their_noise);
-        if (!one) continue;
-        if (has_two_parts(classify_union(u).type)) continue;
-        candidates.push_back({united_error - parts, static_cast<int>(k), u, exact});
+        if (one && !has_two_parts(classify_union(u).type))
+            candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, false});
+        else if (vertices_on_one_surface(u, i, j, faces))
+            candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, true});
     }
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
@@ -966,8 +977,8 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         if (std::find(rejected_merges_.begin(), rejected_merges_.end(), merge) != rejected_merges_.end()) continue;
         const Quadric& q = c.u.fit.quadric;
         // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
-        const bool on_faces = one_surface(q, i, j, faces);
-        const bool on_vertices = !on_faces && vertices_on_one_surface(c.u, i, j, faces);
+        const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces);
+        const bool on_vertices = c.on_vertices || (!on_faces && vertices_on_one_surface(c.u, i, j, faces));
         if (!on_faces && !on_vertices) continue;
         if (!c.exact && !on_vertices && !keeps_type(i, j, q, faces)) continue;
         if (merged) *merged = pairs[c.pair];
@@ -1030,24 +1041,36 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
     // A tessellation lays its faces inside a curved surface: a piece of a coarse cylinder
     // fits a quadric bent to its own chords, and the union's quadric leaves each piece with
     // several times its own error, as two surfaces would. Its vertices lie on the surface:
-    // when those of both regions fit one quadric ten times closer than their faces do (and
-    // within `precision`), the faces' error is their sag, not a second surface. Noise
-    // moves the vertices more than it moves the faces, which average it: never under noise.
+    // when those of both regions fit one quadric as closely as a file stores them, the
+    // faces' error is their sag, not a second surface. Noise, however small, moves the
+    // vertices farther: never under noise.
+    const double stored = kStoredPrecision * kStoredPrecision;
+    // Faces within ten times that of one quadric have no sag to tell from a second
+    // surface: the tests on the faces decide.
+    if (!(u.fit.mean_squared > 100 * stored)) return false;
     std::vector<int> both = faces[a];
     both.insert(both.end(), faces[b].begin(), faces[b].end());
+    // A few hundred faces' vertices first: on two surfaces they already fit no quadric.
+    Moments some{};
+    const std::size_t stride = both.size() / 256 + 1;
+    for (std::size_t k = 0; k < both.size(); k += stride)
+        for (int v : model_.triangles[both[k]]) add_to(some, point_moments(model_.points[v], 1));
+    if (!(fit_taubin(some).mean_squared <= stored)) return false;
     const Samples s = region_samples(model_, both);
     Moments vertex_moments{};
     for (std::size_t k = 0; k < s.points.size(); ++k) add_to(vertex_moments, point_moments(s.points[k], s.weights[k]));
     Union on_vertices{u.moments, fit_taubin(vertex_moments)};
-    const double limit = std::min(0.01 * u.fit.mean_squared, options_.precision * options_.precision);
-    if (!(on_vertices.fit.mean_squared <= limit)) return false;
+    // And they must determine it: a strip one face wide, or ten vertices, lie on many
+    // quadrics; no other may come within the tessellation's deviation (twice its median
+    // sagitta) of them.
+    const double sag = 2 * s.tolerance;
+    if (!(on_vertices.fit.mean_squared <= stored && on_vertices.fit.next_mean_squared > sag * sag)) return false;
     // The faces of each must sag from it no more than the tessellation does (twice the
     // median sagitta of the union's edges): a coarse plane disc's vertices all lie on the
     // rim of the cylinder beside it, its flat faces cut across that cylinder.
     const Quadric& q = on_vertices.fit.quadric;
     FaceErrors evaluator;
     evaluator.reset(model_, {q});
-    const double sag = 2 * s.tolerance;
     for (int region : {a, b}) {
         double error = 0;
         for (int f : faces[region]) error += evaluator(f, 0);
