@@ -113,9 +113,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     // The region's quadric was fitted to its triangles, which a CAD tessellation lays
     // inside curved surfaces; the special fits see the vertices. Both general quadrics
     // compete, each as its affine type.
-    Moments vertex_moments{};
-    for (std::size_t i = 0; i < s.points.size(); ++i) add_to(vertex_moments, point_moments(s.points[i], s.weights[i]));
-    for (const Quadric& q : {general, fit_taubin(vertex_moments).quadric}) {
+    for (const Quadric& q : {general, fit_taubin(moments_of(s)).quadric}) {
         TypedFit g;
         g.quadric = normalized(q);
         g.shape = classify(q, center, radius, options.classify);

@@ -38,6 +38,13 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
 // a thousand of them evenly strided.
 Samples region_samples(const Model& model, const std::vector<int>& faces);
 
+// Σ of the points' moments, each of its weight: what a quadric fit of the points takes.
+inline Moments moments_of(const Samples& s) {
+    Moments m{};
+    for (std::size_t i = 0; i < s.points.size(); ++i) add_to(m, point_moments(s.points[i], s.weights[i]));
+    return m;
+}
+
 inline Vec3 weighted_centroid(const Samples& s) {
     Vec3 c = Vec3::Zero();
     for (std::size_t i = 0; i < s.points.size(); ++i) c += s.weights[i] * s.points[i];

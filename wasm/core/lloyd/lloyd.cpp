@@ -1021,14 +1021,19 @@ double Lloyd::facing(const Quadric& q, int face) const {
     return n.norm() > 0 ? model_.areas[face] * features_.normals[face].dot(n.normalized()) : 0.0;
 }
 
+std::array<double, 2> Lloyd::errors_against(const Quadric& q, int a, int b, const RegionFaces& faces) const {
+    FaceErrors evaluator;
+    evaluator.reset(model_, {q});
+    std::array<double, 2> error{0, 0};
+    for (int k : {0, 1})
+        for (int f : faces[k == 0 ? a : b]) error[k] += evaluator(f, 0);
+    return error;
+}
+
 bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const {
     // Each part judged alone (lies_on), so that a small region's misfit does not hide in a
     // large region's noise.
-    FaceErrors evaluator;
-    evaluator.reset(model_, {q});
-    double error[2] = {0, 0};
-    for (int k : {0, 1})
-        for (int f : faces[k == 0 ? a : b]) error[k] += evaluator(f, 0);
+    const std::array<double, 2> error = errors_against(q, a, b, faces);
     const int m = options_.min_quadric_faces;
     if (!lies_on(a, error[0], is_strip(model_, labels_, faces[a], m), error[1] / proxies_[b].area) ||
         !lies_on(b, error[1], is_strip(model_, labels_, faces[b], m), error[0] / proxies_[a].area))
@@ -1057,9 +1062,7 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
         for (int v : model_.triangles[both[k]]) add_to(some, point_moments(model_.points[v], 1));
     if (!(fit_taubin(some).mean_squared <= stored)) return false;
     const Samples s = region_samples(model_, both);
-    Moments vertex_moments{};
-    for (std::size_t k = 0; k < s.points.size(); ++k) add_to(vertex_moments, point_moments(s.points[k], s.weights[k]));
-    Union on_vertices{u.moments, fit_taubin(vertex_moments)};
+    const Union on_vertices{u.moments, fit_taubin(moments_of(s))};
     // And they must determine it: a strip one face wide, or ten vertices, lie on many
     // quadrics; no other may come within the tessellation's deviation (twice its median
     // sagitta) of them.
@@ -1069,13 +1072,8 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
     // median sagitta of the union's edges): a coarse plane disc's vertices all lie on the
     // rim of the cylinder beside it, its flat faces cut across that cylinder.
     const Quadric& q = on_vertices.fit.quadric;
-    FaceErrors evaluator;
-    evaluator.reset(model_, {q});
-    for (int region : {a, b}) {
-        double error = 0;
-        for (int f : faces[region]) error += evaluator(f, 0);
-        if (!(error <= sag * sag * proxies_[region].area)) return false;
-    }
+    const std::array<double, 2> error = errors_against(q, a, b, faces);
+    if (!(error[0] <= sag * sag * proxies_[a].area && error[1] <= sag * sag * proxies_[b].area)) return false;
     // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not.
     return !faces_both_ways(q, faces[a], faces[b]) && !union_on_two_parts(on_vertices, a, b);
 }

@@ -9,6 +9,7 @@
 #include "geometry/rng.h"
 #include "lloyd/flooding.h"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -282,6 +283,8 @@ private:
     // Whether the union of regions a and b (of quadric `united`) is the surface type the
     // larger of them is (see lloyd.cpp).
     bool keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const;
+    // Σ d(f, q) over the faces of region a, and of region b.
+    std::array<double, 2> errors_against(const Quadric& q, int a, int b, const RegionFaces& faces) const;
     // Whether q explains regions a and b as one surface (see merge_same_surface).
     bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const;
     // Whether the vertices of regions a and b (union u) lie on one quadric, with one part
