@@ -25,7 +25,7 @@ import { describeEdit, format, typeName } from './ui/format.js';
 import { createInspector } from './ui/inspector.js';
 import { drawPlot } from './ui/plot.js';
 import { createScene } from './ui/scene.js';
-import { createTimeline } from './ui/timeline.js';
+import { createTimeline, frameOf } from './ui/timeline.js';
 import { VqsaClient } from './vqsa-client.js';
 import { examples as exampleNames, options as schema } from './vqsa-schema.js';
 
@@ -507,7 +507,7 @@ export function createViewer(host, options = {}) {
 
   function showProgress(p) {
     live = p.labels;
-    timeline.record({ labels: p.labels, proxies: p.proxies, rms: p.rms, stage: p.stage, phase: p.phase, iteration: p.iteration });
+    timeline.record(frameOf(p));
     host.dataset.proxies = String(p.proxies);
     // The curve: each partition Lloyd settled on (the error right after an operation has not
     // settled yet).
@@ -549,7 +549,7 @@ export function createViewer(host, options = {}) {
     const rms = result.reportObject.rms_error_relative;
     if (!edited) {
       ending = [done.proxies.length, rms];
-      timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms });
+      timeline.record({ labels: done.faceLabels, proxies: done.proxies.length, rms, at: ending });
       timeline.finish();
     }
     // An edited result is marked on the run's curve.
@@ -575,7 +575,7 @@ export function createViewer(host, options = {}) {
     showView();
     applyVisibility();
     const edited = result?.reportObject?.edits?.length ? [result.proxies.length, result.reportObject.rms_error_relative] : null;
-    drawPlot(plot, growth, ending, frame ? [frame.proxies, frame.rms] : edited);
+    drawPlot(plot, growth, ending, frame ? frame.at : edited);
   }
 
   // `overrides`: options of the schema by their camelCase names; they stay set.

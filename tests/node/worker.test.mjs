@@ -4,6 +4,7 @@ import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { loadVqsa } from '../../wasm/node/load.mjs';
 import { cancelLatencies, startWorker } from './support.mjs';
+import { frameOf } from '../../web/ui/timeline.js';
 
 test('a cancel is acknowledged within 100 ms in every stage', async (t) => {
   const worker = startWorker();
@@ -97,15 +98,21 @@ test('progress carries every partition the run settled on, with its count and er
   const worker = startWorker();
   try {
     await worker.request({ type: 'example', name: 'turned_part' });
-    const seen = [];
+    const seen = [], operations = [];
     worker.onProgress = (p) => {
       const last = seen.at(-1);
       if (p.settledProxies > 0 && !(last && last[0] === p.settledProxies && last[1] === p.settledRms))
         seen.push([p.settledProxies, p.settledRms]);
+      if (p.stage === 'lloyd' && p.phase !== 'lloyd') operations.push(frameOf(p));
     };
     const done = await worker.request({ type: 'run', options: { proxies: 50 } });
     assert.equal(done.type, 'result');
     assert.deepEqual(seen, settles);
+    // The timeline marks an operation's frame on the curve, at the partition it started from
+    // (not at its new count with the old error).
+    const onCurve = new Set(settles.map((point) => JSON.stringify(point)));
+    for (const frame of operations.filter((f) => f.phase !== 'initialize'))
+      assert.ok(onCurve.has(JSON.stringify(frame.at)), `${frame.phase} at ${frame.proxies} proxies marked at ${frame.at}`);
   } finally {
     worker.terminate();
   }

@@ -8,8 +8,17 @@ import { element } from './dom.js';
 const MAX_BYTES = 64 * 1024 ** 2;
 const PLAY_INTERVAL_MS = 150;
 
-// `show(frame | null)`: draw a recorded frame {labels, proxies, rms, stage, phase}, or the
-// result (null) once the slider is at the end.
+// The frame of a progress event. An operation's event carries its new count with the error
+// of the partition it started from (the new one is not flooded yet): on the plot, its point
+// is that start, the partition Lloyd last settled on.
+export function frameOf(p) {
+  const operation = p.stage === 'lloyd' && p.phase !== 'lloyd' && p.settledProxies > 0;
+  return { labels: p.labels, proxies: p.proxies, rms: p.rms, stage: p.stage, phase: p.phase, iteration: p.iteration,
+           at: operation ? [p.settledProxies, p.settledRms] : [p.proxies, p.rms] };
+}
+
+// `show(frame | null)`: draw a recorded frame {labels, proxies, rms, stage, phase, at (its
+// point on the plot)}, or the result (null) once the slider is at the end.
 export function createTimeline(show) {
   let frames = [], bytes = 0, timer = null;
   const slider = element('input', { type: 'range', min: 0, max: 0, value: 0, ariaLabel: 'timeline of the run' });
