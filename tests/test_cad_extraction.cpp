@@ -287,6 +287,13 @@ TEST(CadExtraction, ACoarseExportsHolesAreOneRegionEach) {
         const Outcome counted_bracket = run(bracket, counted(static_cast<int>(bracket.surfaces.size()), coarse.seed));
         EXPECT_GE(counted_bracket.accuracy, 0.99);
         EXPECT_EQ(counted_bracket.two_part, 0);
+        // Automatic, the fillet's six facets ended as six exact planes (14 regions, accuracy
+        // 0.956): two rows of vertices determine no quadric, so no pair of them merged. A run
+        // of them does: one cylinder.
+        const Outcome automatic_bracket = run(bracket, counted(0, coarse.seed));
+        EXPECT_EQ(automatic_bracket.regions, static_cast<int>(bracket.surfaces.size()));
+        EXPECT_GE(automatic_bracket.accuracy, 0.99);
+        EXPECT_EQ(automatic_bracket.two_part, 0);
     }
 }
 

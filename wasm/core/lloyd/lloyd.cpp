@@ -482,7 +482,7 @@ void Lloyd::finish() {
             pending_merge_ = std::move(pending);
             return start_operation(Operation::merge);
         }
-        if (merge_handful()) return start_operation(Operation::merge);
+        if (merge_exact_pieces() || merge_handful()) return start_operation(Operation::merge);
     } else if (merge_at_count()) {
         return start_operation(Operation::merge);
     }
@@ -724,10 +724,17 @@ std::vector<int> Lloyd::faces_on_side(int proxy, int side) const {
 }
 
 Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double margin, int a, int b) const {
+    if (!q.is_plane() && !has_two_parts(c.type)) return {};
+    std::vector<int> faces;
+    for (int f = 0; f < model_.face_count(); ++f)
+        if (labels_[f] == a || labels_[f] == b) faces.push_back(f);
+    return parts(q, c, margin, faces);
+}
+
+Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double margin, const std::vector<int>& faces) const {
     Parts out;
     if (!q.is_plane() && !has_two_parts(c.type)) return out;
-    for (int f = 0; f < model_.face_count(); ++f) {
-        if (labels_[f] != a && labels_[f] != b) continue;
+    for (int f : faces) {
         const int side = side_of(q, f, c, margin);
         if (side == 0) continue;
         const int k = side > 0 ? 0 : 1;
@@ -1076,6 +1083,99 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
     if (!(error[0] <= sag * sag * proxies_[a].area && error[1] <= sag * sag * proxies_[b].area)) return false;
     // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not.
     return !faces_both_ways(q, faces[a], faces[b]) && !union_on_two_parts(on_vertices, a, b);
+}
+
+bool Lloyd::merge_exact_pieces() {
+    // A coarse fillet's facets are one-facet strips, each an exact plane, and two rows of
+    // vertices lie on many quadrics: no pair of them determines the fillet's cylinder
+    // (vertices_on_one_surface), however many of them there are. From each exact region
+    // that determines no quadric, a run grows by neighbours that keep its vertices on one
+    // quadric (as closely as a file stores them), taken on trust while they determine none;
+    // once they do, each member must pass the tests of a pair: its faces within the
+    // tessellation's deviation (twice its median sagitta) of that quadric, facing the way
+    // the run faces, one part of the quadric under the run. A run that ends determined, of
+    // two regions or more, merges.
+    const double stored = kStoredPrecision * kStoredPrecision;
+    const int count = static_cast<int>(proxies_.size());
+    const RegionFaces faces = faces_by_region();
+    std::vector<Moments> vertices(count);
+    std::vector<char> exact(count, 0), determined(count, 0);
+    for (int r = 0; r < count; ++r) {
+        const Samples s = region_samples(model_, faces[r]);
+        vertices[r] = moments_of(s);
+        const Fit fit = fit_taubin(vertices[r]);
+        exact[r] = fit.mean_squared <= stored;
+        determined[r] = exact[r] && fit.next_mean_squared > 4 * s.tolerance * s.tolerance;
+    }
+    std::vector<std::vector<int>> neighbours(count);
+    for (const auto& [a, b] : adjacent_regions(model_, labels_)) neighbours[a].push_back(b), neighbours[b].push_back(a);
+
+    struct Verdict {
+        bool determined = false, one = false;
+    };
+    auto judge = [&](const std::vector<int>& run, const std::vector<int>& run_faces) {
+        const Samples s = region_samples(model_, run_faces);
+        const Fit fit = fit_taubin(moments_of(s));
+        const double sag = 2 * s.tolerance;
+        Verdict v;
+        v.determined = fit.mean_squared <= stored && fit.next_mean_squared > sag * sag;
+        if (!v.determined) return v;
+        FaceErrors evaluator;
+        evaluator.reset(model_, {fit.quadric});
+        Moments m{};
+        for (int r : run) {
+            double error = 0;
+            for (int f : faces[r]) error += evaluator(f, 0);
+            if (!(error <= sag * sag * proxies_[r].area)) return v;
+            if (r != run.front() && faces_both_ways(fit.quadric, faces[run.front()], faces[r])) return v;
+            add_to(m, proxies_[r].moments);
+        }
+        const Classification c = classify_union({m, fit});
+        v.one = !on_two_parts(fit.quadric, parts(fit.quadric, c, 2 * std::sqrt(fit.mean_squared), run_faces), m[0]);
+        return v;
+    };
+    std::vector<char> tried(count, 0);
+    for (int seed = 0; seed < count; ++seed) {
+        if (!exact[seed] || determined[seed] || tried[seed]) continue;
+        std::vector<int> run{seed}, run_faces = faces[seed];
+        std::vector<char> in_run(count, 0);
+        in_run[seed] = 1;
+        Moments sum = vertices[seed];
+        bool run_determined = false;
+        for (bool grew = true; grew;) {
+            grew = false;
+            for (std::size_t k = 0; k < run.size() && !grew; ++k)
+                for (int b : neighbours[run[k]]) {
+                    if (in_run[b] || !exact[b]) continue;
+                    Moments with = sum;
+                    add_to(with, vertices[b]);
+                    if (!(fit_taubin(with).mean_squared <= stored)) continue;
+                    std::vector<int> grown = run, grown_faces = run_faces;
+                    grown.push_back(b);
+                    grown_faces.insert(grown_faces.end(), faces[b].begin(), faces[b].end());
+                    const Verdict v = judge(grown, grown_faces);
+                    if ((run_determined || v.determined) && !v.one) continue;
+                    run = std::move(grown), run_faces = std::move(grown_faces), sum = with, in_run[b] = 1;
+                    run_determined = v.determined, grew = true;
+                    break;
+                }
+        }
+        for (int r : run) tried[r] = 1;
+        if (!run_determined || run.size() < 2) continue;
+        Moments m{};
+        int run_face_count = 0;
+        for (int r : run) add_to(m, proxies_[r].moments), run_face_count += proxies_[r].faces;
+        const Fit fit = fit_proxy(m, run_face_count, options_);
+        Proxy& p = proxies_[run.front()];
+        p.quadric = fit.quadric;
+        p.fit_error = fit.mean_squared;
+        p.fitted = true;
+        std::vector<std::pair<int, int>> merges;
+        for (std::size_t k = 1; k < run.size(); ++k) merges.push_back({run[k], run.front()});
+        merge_regions(merges);
+        return true;
+    }
+    return false;
 }
 
 bool Lloyd::faces_both_ways(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b) const {

@@ -222,6 +222,7 @@ private:
     // The faces of regions a and b (a == b for one region) on each part of q, classified
     // as c; faces within `margin` of where the parts separate count on neither.
     Parts parts(const Quadric& q, const Classification& c, double margin, int a, int b) const;
+    Parts parts(const Quadric& q, const Classification& c, double margin, const std::vector<int>& faces) const;
     // Whether faces of that area lie on two parts (enough of them to count; see invalid).
     bool on_two_parts(const Quadric& q, const Parts& p, double area) const;
     // Regions a and b fitted as one.
@@ -290,6 +291,10 @@ private:
     // Whether the vertices of regions a and b (union u) lie on one quadric, with one part
     // under them, far closer than their faces do: a tessellation's surface (see lloyd.cpp).
     bool vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const;
+    // Merges a run of adjacent regions whose vertices lie on one quadric as closely as a
+    // file stores them and determine it together, though no pair of them does (a coarse
+    // fillet's one-facet strips): whether it did (see lloyd.cpp).
+    bool merge_exact_pieces();
     // Whether `error`, the region's error against another quadric, says it lies on that
     // quadric's surface as well as on its own; for a `strip` (is_strip), as well as the
     // faces that quadric was fitted to: `reference` is their error per unit area.
