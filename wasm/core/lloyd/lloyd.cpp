@@ -21,6 +21,16 @@ namespace {
 // keep. Noise, however small it is, moves them farther.
 constexpr double kStoredPrecision = 1e-6;
 
+// The quadric through the vertices of a few hundred of the faces, evenly strided: a cheap
+// first look at whether all of them lie on one.
+Fit fit_some_vertices(const Model& model, const std::vector<int>& faces) {
+    Moments some{};
+    const std::size_t stride = faces.size() / 256 + 1;
+    for (std::size_t k = 0; k < faces.size(); k += stride)
+        for (int v : model.triangles[faces[k]]) add_to(some, point_moments(model.points[v], 1));
+    return fit_taubin(some);
+}
+
 }  // namespace
 
 const char* operation_name(Operation operation) {
@@ -1063,11 +1073,7 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
     std::vector<int> both = faces[a];
     both.insert(both.end(), faces[b].begin(), faces[b].end());
     // A few hundred faces' vertices first: on two surfaces they already fit no quadric.
-    Moments some{};
-    const std::size_t stride = both.size() / 256 + 1;
-    for (std::size_t k = 0; k < both.size(); k += stride)
-        for (int v : model_.triangles[both[k]]) add_to(some, point_moments(model_.points[v], 1));
-    if (!(fit_taubin(some).mean_squared <= stored)) return false;
+    if (!(fit_some_vertices(model_, both).mean_squared <= stored)) return false;
     const Samples s = region_samples(model_, both);
     const Union on_vertices{u.moments, fit_taubin(moments_of(s))};
     // And they must determine it: a strip one face wide, or ten vertices, lie on many
@@ -1101,6 +1107,8 @@ bool Lloyd::merge_exact_pieces() {
     std::vector<Moments> vertices(count);
     std::vector<char> exact(count, 0), determined(count, 0);
     for (int r = 0; r < count; ++r) {
+        // A few hundred faces' vertices first: most regions are on no quadric so closely.
+        if (!(fit_some_vertices(model_, faces[r]).mean_squared <= stored)) continue;
         const Samples s = region_samples(model_, faces[r]);
         vertices[r] = moments_of(s);
         const Fit fit = fit_taubin(vertices[r]);
