@@ -764,11 +764,11 @@ bool Lloyd::on_two_parts(const Quadric& q, const Parts& p, double area) const {
     return p.both(area, options_.split_fraction);
 }
 
-Lloyd::Union Lloyd::fit_union(int a, int b) const {
-    Union u;
-    u.moments = proxies_[a].moments;
-    add_to(u.moments, proxies_[b].moments);
-    u.fit = fit_proxy(u.moments, proxies_[a].faces + proxies_[b].faces, options_);
+Lloyd::Union Lloyd::fit_union(const std::vector<int>& regions) const {
+    Union u{};
+    int faces = 0;
+    for (int r : regions) add_to(u.moments, proxies_[r].moments), faces += proxies_[r].faces;
+    u.fit = fit_proxy(u.moments, faces, options_);
     return u;
 }
 
@@ -934,14 +934,14 @@ bool Lloyd::merge_least_cost(const std::function<bool(int, int)>& eligible,
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         if (!eligible(i, j)) continue;
-        const Union u = fit_union(i, j);
+        const Union u = fit_union({i, j});
         const double cost = u.moments[0] * u.fit.mean_squared - proxies_[i].area * proxies_[i].fit_error -
                             proxies_[j].area * proxies_[j].fit_error;
         if (cost >= best_cost || !acceptable(u, i, j, faces)) continue;
         best_cost = cost, best_pair = static_cast<int>(k), best_fit = u.fit;
     }
     if (best_pair < 0) return false;
-    merge_pair(pairs[best_pair].first, pairs[best_pair].second, best_fit);
+    merge_into(pairs[best_pair].first, {pairs[best_pair].second}, best_fit);
     return true;
 }
 
@@ -972,7 +972,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         const Proxy &a = proxies_[i], &b = proxies_[j];
-        const Union u = fit_union(i, j);
+        const Union u = fit_union({i, j});
         const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = u.moments[0] * u.fit.mean_squared;
         const bool as_well_as_apart = united_error <= 1.25 * parts + 1e-12 * u.moments[0];
         const bool within_their_noise = united_error <= noise_energy(i) + noise_energy(j);
@@ -999,7 +999,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         if (!on_faces && !on_vertices) continue;
         if (!c.exact && !on_vertices && !keeps_type(i, j, q, faces)) continue;
         if (merged) *merged = pairs[c.pair];
-        merge_pair(i, j, c.u.fit);
+        merge_into(i, {j}, c.u.fit);
         return true;
     }
     return false;
@@ -1059,6 +1059,42 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
            !strays(q, faces[b]);
 }
 
+Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, const RegionFaces& faces) const {
+    const double stored = kStoredPrecision * kStoredPrecision;
+    std::vector<int> all;
+    for (int r : regions) all.insert(all.end(), faces[r].begin(), faces[r].end());
+    const Samples s = region_samples(model_, all);
+    const Fit fit = fit_taubin(moments_of(s));
+    // The vertices must determine it: a strip one face wide, or ten vertices, lie on many
+    // quadrics; no other may come within the tessellation's deviation (twice its median
+    // sagitta) of them.
+    const double sag = 2 * s.tolerance;
+    VertexSurface out;
+    out.determined = fit.mean_squared <= stored && fit.next_mean_squared > sag * sag;
+    if (!out.determined) return out;
+    // The faces of each must sag from it no more than the tessellation does: a coarse
+    // plane disc's vertices all lie on the rim of the cylinder beside it, its flat faces
+    // cut across that cylinder. And they face one way.
+    FaceErrors evaluator;
+    evaluator.reset(model_, {fit.quadric});
+    double noise = 0;
+    for (int r : regions) {
+        double error = 0;
+        for (int f : faces[r]) error += evaluator(f, 0);
+        if (!(error <= sag * sag * proxies_[r].area)) return out;
+        if (r != regions.front() && faces_both_ways(fit.quadric, faces[regions.front()], faces[r])) return out;
+        noise += region_noise_[r];
+    }
+    // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not
+    // (as for a region: faces within the fit's error or the noise of where its parts meet
+    // count on neither).
+    const Union u = {fit_union(regions).moments, fit};
+    const double area = std::max(u.moments[0], 1e-300);
+    const double margin = 2 * std::sqrt(std::max(fit.mean_squared, noise / area));
+    out.one = !on_two_parts(fit.quadric, parts(fit.quadric, classify_union(u), margin, all), area);
+    return out;
+}
+
 bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const {
     // A tessellation lays its faces inside a curved surface: a piece of a coarse cylinder
     // fits a quadric bent to its own chords, and the union's quadric leaves each piece with
@@ -1074,21 +1110,7 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
     both.insert(both.end(), faces[b].begin(), faces[b].end());
     // A few hundred faces' vertices first: on two surfaces they already fit no quadric.
     if (!(fit_some_vertices(model_, both).mean_squared <= stored)) return false;
-    const Samples s = region_samples(model_, both);
-    const Union on_vertices{u.moments, fit_taubin(moments_of(s))};
-    // And they must determine it: a strip one face wide, or ten vertices, lie on many
-    // quadrics; no other may come within the tessellation's deviation (twice its median
-    // sagitta) of them.
-    const double sag = 2 * s.tolerance;
-    if (!(on_vertices.fit.mean_squared <= stored && on_vertices.fit.next_mean_squared > sag * sag)) return false;
-    // The faces of each must sag from it no more than the tessellation does (twice the
-    // median sagitta of the union's edges): a coarse plane disc's vertices all lie on the
-    // rim of the cylinder beside it, its flat faces cut across that cylinder.
-    const Quadric& q = on_vertices.fit.quadric;
-    const std::array<double, 2> error = errors_against(q, a, b, faces);
-    if (!(error[0] <= sag * sag * proxies_[a].area && error[1] <= sag * sag * proxies_[b].area)) return false;
-    // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not.
-    return !faces_both_ways(q, faces[a], faces[b]) && !union_on_two_parts(on_vertices, a, b);
+    return vertex_surface({a, b}, faces).one;
 }
 
 bool Lloyd::merge_exact_pieces() {
@@ -1097,10 +1119,8 @@ bool Lloyd::merge_exact_pieces() {
     // (vertices_on_one_surface), however many of them there are. From each exact region
     // that determines no quadric, a run grows by neighbours that keep its vertices on one
     // quadric (as closely as a file stores them), taken on trust while they determine none;
-    // once they do, each member must pass the tests of a pair: its faces within the
-    // tessellation's deviation (twice its median sagitta) of that quadric, facing the way
-    // the run faces, one part of the quadric under the run. A run that ends determined, of
-    // two regions or more, merges.
+    // once they do, every member must pass the tests of a pair (vertex_surface). A run that
+    // ends determined, of two regions or more, merges.
     const double stored = kStoredPrecision * kStoredPrecision;
     const int count = static_cast<int>(proxies_.size());
     const RegionFaces faces = faces_by_region();
@@ -1118,34 +1138,10 @@ bool Lloyd::merge_exact_pieces() {
     std::vector<std::vector<int>> neighbours(count);
     for (const auto& [a, b] : adjacent_regions(model_, labels_)) neighbours[a].push_back(b), neighbours[b].push_back(a);
 
-    struct Verdict {
-        bool determined = false, one = false;
-    };
-    auto judge = [&](const std::vector<int>& run, const std::vector<int>& run_faces) {
-        const Samples s = region_samples(model_, run_faces);
-        const Fit fit = fit_taubin(moments_of(s));
-        const double sag = 2 * s.tolerance;
-        Verdict v;
-        v.determined = fit.mean_squared <= stored && fit.next_mean_squared > sag * sag;
-        if (!v.determined) return v;
-        FaceErrors evaluator;
-        evaluator.reset(model_, {fit.quadric});
-        Moments m{};
-        for (int r : run) {
-            double error = 0;
-            for (int f : faces[r]) error += evaluator(f, 0);
-            if (!(error <= sag * sag * proxies_[r].area)) return v;
-            if (r != run.front() && faces_both_ways(fit.quadric, faces[run.front()], faces[r])) return v;
-            add_to(m, proxies_[r].moments);
-        }
-        const Classification c = classify_union({m, fit});
-        v.one = !on_two_parts(fit.quadric, parts(fit.quadric, c, 2 * std::sqrt(fit.mean_squared), run_faces), m[0]);
-        return v;
-    };
     std::vector<char> tried(count, 0);
     for (int seed = 0; seed < count; ++seed) {
         if (!exact[seed] || determined[seed] || tried[seed]) continue;
-        std::vector<int> run{seed}, run_faces = faces[seed];
+        std::vector<int> run{seed};
         std::vector<char> in_run(count, 0);
         in_run[seed] = 1;
         Moments sum = vertices[seed];
@@ -1158,29 +1154,18 @@ bool Lloyd::merge_exact_pieces() {
                     Moments with = sum;
                     add_to(with, vertices[b]);
                     if (!(fit_taubin(with).mean_squared <= stored)) continue;
-                    std::vector<int> grown = run, grown_faces = run_faces;
+                    std::vector<int> grown = run;
                     grown.push_back(b);
-                    grown_faces.insert(grown_faces.end(), faces[b].begin(), faces[b].end());
-                    const Verdict v = judge(grown, grown_faces);
+                    const VertexSurface v = vertex_surface(grown, faces);
                     if ((run_determined || v.determined) && !v.one) continue;
-                    run = std::move(grown), run_faces = std::move(grown_faces), sum = with, in_run[b] = 1;
+                    run = std::move(grown), sum = with, in_run[b] = 1;
                     run_determined = v.determined, grew = true;
                     break;
                 }
         }
         for (int r : run) tried[r] = 1;
         if (!run_determined || run.size() < 2) continue;
-        Moments m{};
-        int run_face_count = 0;
-        for (int r : run) add_to(m, proxies_[r].moments), run_face_count += proxies_[r].faces;
-        const Fit fit = fit_proxy(m, run_face_count, options_);
-        Proxy& p = proxies_[run.front()];
-        p.quadric = fit.quadric;
-        p.fit_error = fit.mean_squared;
-        p.fitted = true;
-        std::vector<std::pair<int, int>> merges;
-        for (std::size_t k = 1; k < run.size(); ++k) merges.push_back({run[k], run.front()});
-        merge_regions(merges);
+        merge_into(run.front(), std::vector<int>(run.begin() + 1, run.end()), fit_union(run).fit);
         return true;
     }
     return false;
@@ -1368,8 +1353,8 @@ bool Lloyd::repair(const Stuck& found) {
                 if (labels_[g.neighbor[e]] != stuck) ++shared[labels_[g.neighbor[e]]];
     const int into = static_cast<int>(std::max_element(shared.begin(), shared.end()) - shared.begin());
     if (shared[into] == 0) return false;  // alone in its component: it must stay
-    const Union united = fit_union(into, stuck);
-    merge_pair(into, stuck, united.fit);
+    const Union united = fit_union({into, stuck});
+    merge_into(into, {stuck}, united.fit);
     if (found.chart >= 0) return seed_at_random(chart_faces_[found.chart]);
     const int worst_after = worst > stuck ? worst - 1 : worst;
     const double error = proxies_[worst_after].error;
@@ -1379,12 +1364,14 @@ bool Lloyd::repair(const Stuck& found) {
     return added == 1;
 }
 
-int Lloyd::merge_pair(int keep, int gone, const Fit& fit) {
+void Lloyd::merge_into(int keep, const std::vector<int>& gone, const Fit& fit) {
     Proxy& p = proxies_[keep];
     p.quadric = fit.quadric;
     p.fit_error = fit.mean_squared;
     p.fitted = true;
-    return merge_regions({{gone, keep}})[keep];
+    std::vector<std::pair<int, int>> merges;
+    for (int r : gone) merges.push_back({r, keep});
+    merge_regions(merges);
 }
 
 std::vector<int> Lloyd::merge_regions(const std::vector<std::pair<int, int>>& merges) {

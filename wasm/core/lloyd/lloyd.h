@@ -225,12 +225,12 @@ private:
     Parts parts(const Quadric& q, const Classification& c, double margin, const std::vector<int>& faces) const;
     // Whether faces of that area lie on two parts (enough of them to count; see invalid).
     bool on_two_parts(const Quadric& q, const Parts& p, double area) const;
-    // Regions a and b fitted as one.
+    // Regions fitted as one.
     struct Union {
         Moments moments;
         Fit fit;
     };
-    Union fit_union(int a, int b) const;
+    Union fit_union(const std::vector<int>& regions) const;
     Classification classify_union(const Union& u) const;
     // Whether the union of a and b would be an invalid region.
     bool union_on_two_parts(const Union& u, int a, int b) const;
@@ -291,6 +291,14 @@ private:
     // Whether the vertices of regions a and b (union u) lie on one quadric, with one part
     // under them, far closer than their faces do: a tessellation's surface (see lloyd.cpp).
     bool vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const;
+    // Whether the vertices of `regions` lie on one quadric as closely as a file stores them
+    // and determine it (no other comes within the tessellation's deviation), and whether they
+    // are one surface on it: each region's faces within that deviation, all facing one way,
+    // one part of the quadric under them.
+    struct VertexSurface {
+        bool determined = false, one = false;
+    };
+    VertexSurface vertex_surface(const std::vector<int>& regions, const RegionFaces& faces) const;
     // Merges a run of adjacent regions whose vertices lie on one quadric as closely as a
     // file stores them and determine it together, though no pair of them does (a coarse
     // fillet's one-facet strips): whether it did (see lloyd.cpp).
@@ -319,8 +327,8 @@ private:
     Stuck find_stuck() const;
     // Merges the stuck region away and reinserts its proxy in the worst region, or in the chart.
     bool repair(const Stuck& stuck);
-    // Region `gone` into region `keep`, of quadric `fit`; returns keep's index after the removal.
-    int merge_pair(int keep, int gone, const Fit& fit);
+    // Regions `gone` into region `keep`, of quadric `fit` (the indices above each gone shift down).
+    void merge_into(int keep, const std::vector<int>& gone, const Fit& fit);
     // Each (gone, keep) in turn: region gone into region keep (which must stay), in one pass
     // over the faces; the merged regions keep their quadrics. Returns each old region's new
     // index (-1: merged away).
