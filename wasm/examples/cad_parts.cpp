@@ -669,6 +669,149 @@ Part rounded_block(const PartOptions& o) {
     return b.finish("rounded_block");
 }
 
+
+// Three separate plates of an assembly, each 3 % of its length thick, with rounded
+// corners (quarter cylinders tangent to the sides) and a through slot or a round hole:
+// 14 + 11 + 14 = 39 faces on three components, the narrow sides and corner strips one
+// facet tall. Plates lie flat, stacked and crossed, and upright.
+Part plate_assembly(const PartOptions& o) {
+    PartBuilder b(o);
+    const double A = 1.0, B = 0.6, corner_r = 0.15, T = 0.06, slot_r = 0.12;
+
+    // One plate in its own frame (z from 0 to T, centred on the z axis), then placed by
+    // p → R p + at. `slot_a`: half the distance between the slot's end centres (0: a hole).
+    auto plate = [&](const Eigen::Matrix3d& R, const Vec3& at, double slot_a) {
+        auto place = [&](const Vec3& p) { return Vec3(R * p + at); };
+        auto place_all = [&](const std::vector<Vec3>& points) {
+            std::vector<Vec3> out;
+            for (const Vec3& p : points) out.push_back(place(p));
+            return out;
+        };
+        const int bottom = b.surface(plane(place({0, 0, 0}), -(R * Vec3::UnitZ())));
+        const int top = b.surface(plane(place({0, 0, T}), R * Vec3::UnitZ()));
+        // Sides and corners counter-clockwise from the right side (+x): side k's outward
+        // normal is at angle kπ/2, corner k lies between sides k and k + 1.
+        int side[4], corner[4];
+        const Vec3 corner_centre[4] = {{A - corner_r, B - corner_r, 0}, {-(A - corner_r), B - corner_r, 0},
+                                       {-(A - corner_r), -(B - corner_r), 0}, {A - corner_r, -(B - corner_r), 0}};
+        const Vec3 side_normal[4] = {Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitX(), -Vec3::UnitY()};
+        for (int k = 0; k < 4; ++k) {
+            side[k] = b.surface(plane(place(side_normal[k].cwiseProduct(Vec3(A, B, 0))), R * side_normal[k]));
+            corner[k] = b.surface(cylinder(place(corner_centre[k]), R * Vec3::UnitZ(), corner_r));
+        }
+        // The slot's walls face its axis; a hole is one cylinder.
+        const int wall_low = slot_a > 0 ? b.surface(plane(place({0, -slot_r, 0}), R * Vec3::UnitY())) : -1;
+        const int end_right = b.surface(cylinder(place({slot_a, 0, 0}), R * Vec3::UnitZ(), slot_r));
+        const int wall_high = slot_a > 0 ? b.surface(plane(place({0, slot_r, 0}), -(R * Vec3::UnitY()))) : -1;
+        const int end_left = slot_a > 0 ? b.surface(cylinder(place({-slot_a, 0, 0}), R * Vec3::UnitZ(), slot_r)) : end_right;
+
+        // Where the ray from the centre along u meets the outline and the slot, and on which face.
+        auto outline_hit = [&](const Vec3& u, int* face) {
+            const double tx = std::abs(u.x()) > 0 ? A / std::abs(u.x()) : 1e300;
+            const double ty = std::abs(u.y()) > 0 ? B / std::abs(u.y()) : 1e300;
+            const Vec3 p = std::min(tx, ty) * u;
+            if (std::abs(p.x()) > A - corner_r && std::abs(p.y()) > B - corner_r) {
+                const int k = p.y() > 0 ? (p.x() > 0 ? 0 : 1) : (p.x() > 0 ? 3 : 2);
+                const Vec3& m = corner_centre[k];
+                const double along = u.dot(m);
+                if (face) *face = corner[k];
+                return Vec3(std::max(0.0, along + std::sqrt(along * along - m.squaredNorm() + corner_r * corner_r)) * u);
+            }
+            if (face) *face = tx <= ty ? side[u.x() > 0 ? 0 : 2] : side[u.y() > 0 ? 1 : 3];
+            return p;
+        };
+        auto slot_hit = [&](const Vec3& u, int* face) {
+            if (slot_a > 0 && std::abs(u.y()) > 0) {
+                const double t = slot_r / std::abs(u.y());
+                if (std::abs(t * u.x()) <= slot_a) {
+                    if (face) *face = u.y() > 0 ? wall_high : wall_low;
+                    return Vec3(t * u);
+                }
+            }
+            const Vec3 m(u.x() > 0 ? slot_a : -slot_a, 0, 0);
+            const double along = u.dot(m);
+            if (face) *face = u.x() > 0 ? end_right : end_left;
+            return Vec3((along + std::sqrt(along * along - m.squaredNorm() + slot_r * slot_r)) * u);
+        };
+
+        // Samples of both loops, each a ray from the centre that meets the other loop.
+        // Rays in order of a pseudo-angle from + − ÷ only (libm's atan2 differs between
+        // platforms in its last bits, and the order makes the mesh).
+        auto pseudo_angle = [](const Vec3& p) {
+            const double x = p.x(), y = p.y();
+            if (y >= 0) return x >= 0 ? y / (x + y) : 1 - x / (y - x);
+            return x < 0 ? 2 - y / (-x - y) : 3 + x / (x - y);
+        };
+        struct Ray {
+            double angle;
+            int from_slot;  // sampled on the slot, not the outline: after it on one angle
+            Vec3 inner, outer;
+        };
+        std::vector<Ray> rays;
+        auto add_outer = [&](const Vec3& p) { rays.push_back({pseudo_angle(p), 0, slot_hit(p.normalized(), nullptr), p}); };
+        auto add_inner = [&](const Vec3& p) { rays.push_back({pseudo_angle(p), 1, p, outline_hit(p.normalized(), nullptr)}); };
+        auto arc = [&](const Vec3& m, double r, double from, int n, const std::function<void(const Vec3&)>& add) {
+            const std::vector<double> t = b.spacing(n);
+            for (int i = 0; i < n; ++i) {
+                const double a = from + t[i] * kPi / 2;
+                add(m + r * Vec3(portable::cos(a), portable::sin(a), 0));
+            }
+        };
+        const int n_long = b.count(20), n_short = b.count(12), n_corner = b.count(6), n_flat = b.count(12), n_end = b.count(8);
+        for (int k = 0; k < 4; ++k) {  // side k from its start to the next corner, then the corner
+            const Vec3& from = corner_centre[(k + 3) % 4];
+            const Vec3& to = corner_centre[k];
+            const Vec3 offset = corner_r * side_normal[k];
+            const auto points = b.segment(from + offset, to + offset, k % 2 == 0 ? n_short : n_long);
+            for (std::size_t i = 0; i + 1 < points.size(); ++i) add_outer(points[i]);
+            arc(to, corner_r, k * kPi / 2, n_corner, add_outer);
+        }
+        if (slot_a > 0) {
+            for (const auto& [from, to] : {std::pair{Vec3(-slot_a, -slot_r, 0), Vec3(slot_a, -slot_r, 0)},
+                                           {Vec3(slot_a, slot_r, 0), Vec3(-slot_a, slot_r, 0)}}) {
+                const auto points = b.segment(from, to, n_flat);
+                for (std::size_t i = 0; i + 1 < points.size(); ++i) add_inner(points[i]);
+                const bool right = to.x() > 0;
+                arc(Vec3(right ? slot_a : -slot_a, 0, 0), slot_r, right ? -kPi / 2 : kPi / 2, n_end, add_inner);
+                arc(Vec3(right ? slot_a : -slot_a, 0, 0), slot_r, right ? 0 : kPi, n_end, add_inner);
+            }
+        } else {
+            for (int k = 0; k < 4; ++k) arc(Vec3::Zero(), slot_r, k * kPi / 2, n_end, add_inner);
+        }
+        // A total order: standard libraries sort ties differently.
+        std::sort(rays.begin(), rays.end(), [](const Ray& x, const Ray& y) {
+            return x.angle != y.angle ? x.angle < y.angle : x.from_slot < y.from_slot;
+        });
+        // Two samples on one ray (one from each loop) would make a sliver.
+        rays.erase(std::unique(rays.begin(), rays.end(), [](const Ray& x, const Ray& y) { return y.angle - x.angle < 1e-9; }),
+                   rays.end());
+
+        std::vector<Vec3> inner, outer;
+        std::vector<int> inner_face, outer_face;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            inner.push_back(rays[i].inner), outer.push_back(rays[i].outer);
+            // The piece from this ray to the next lies on the face their bisector meets.
+            const Ray& next = rays[(i + 1) % rays.size()];
+            const Vec3 u = (rays[i].outer.normalized() + next.outer.normalized()).normalized();
+            int face;
+            outline_hit(u, &face), outer_face.push_back(face);
+            slot_hit(u, &face), inner_face.push_back(face);
+        }
+        const int rows = b.count(8);
+        b.band(place_all(outer), place_all(inner), rows, true, bottom);
+        b.band(place_all(at_height(outer, T)), place_all(at_height(inner, T)), rows, true, top);
+        b.band(place_all(outer), place_all(at_height(outer, T)), 1, true, [&](int j) { return outer_face[j]; });
+        b.band(place_all(inner), place_all(at_height(inner, T)), 1, true, [&](int j) { return inner_face[j]; });
+    };
+    // Quarter turns about x and z, exactly.
+    Eigen::Matrix3d upright, crossed;
+    upright << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    crossed << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+    plate(Eigen::Matrix3d::Identity(), Vec3::Zero(), 0.4);
+    plate(crossed, Vec3(0, 0, 0.5), 0);
+    plate(upright, Vec3(0, 1.3, 0.3), 0.35);
+    return b.finish("plate_assembly");
+}
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -678,6 +821,7 @@ std::vector<std::string> corpus_part_names() {
 std::vector<std::string> part_names() {
     std::vector<std::string> names = corpus_part_names();
     names.push_back("rounded_block");
+    names.push_back("plate_assembly");
     return names;
 }
 
@@ -689,6 +833,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "thin_plate") return thin_plate(options);
     if (name == "slotted_block") return slotted_block(options);
     if (name == "rounded_block") return rounded_block(options);
+    if (name == "plate_assembly") return plate_assembly(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 

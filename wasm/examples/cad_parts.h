@@ -45,8 +45,9 @@ struct PartOptions {
 };
 
 // box_boss_hole, l_bracket, stepped_shaft, flange, thin_plate, slotted_block (the corpus
-// the CAD-extraction tests hold to their accuracy), then rounded_block (a shape beyond it:
-// no crease anywhere, measured but not held to the corpus's bar).
+// the CAD-extraction tests hold to their accuracy), then shapes beyond it, measured but
+// not held to the corpus's bar: rounded_block (no crease anywhere) and plate_assembly
+// (three thin plates, 39 faces on three components).
 std::vector<std::string> part_names();
 std::vector<std::string> corpus_part_names();
 // Throws std::invalid_argument for an unknown name.

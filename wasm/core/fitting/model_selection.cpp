@@ -130,6 +130,31 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     const double floor2 = (options.floor * radius) * (options.floor * radius) + s.tolerance * s.tolerance;
     for (TypedFit& c : candidates) c.bic = n * std::log(c.rms * c.rms + floor2) + c.parameters * std::log(n);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
+    // Where several types hold the vertices to rounding, the vertices cannot tell them
+    // apart (a band one facet tall holds two circles: on a cylinder, a sphere and
+    // many quadrics); a tessellation lays its edges along a surface's straight lines, so
+    // the one that also holds the edges' midpoints best, by the same criterion, is it.
+    const double exact2 = (options.floor * radius) * (options.floor * radius);
+    if (!s.edge_midpoints.empty() && options.imposed == ImposedType::none && candidates.front().rms * candidates.front().rms <= exact2) {
+        const double m = static_cast<double>(s.edge_midpoints.size());
+        auto with_edges = [&](const TypedFit& c) {
+            const double a = c.quadric.hessian_norm();
+            double sum = 0;
+            for (const Vec3& p : s.edge_midpoints) {
+                const double d = taubin_distance(c.quadric, a, p);
+                sum += d * d;
+            }
+            return c.bic + m * std::log(sum / m + floor2);
+        };
+        auto best = candidates.begin();
+        double best_score = with_edges(*best);
+        for (auto c = candidates.begin() + 1; c != candidates.end(); ++c) {
+            if (!(c->rms * c->rms <= exact2)) continue;
+            const double score = with_edges(*c);
+            if (score < best_score) best = c, best_score = score;
+        }
+        std::rotate(candidates.begin(), best, best + 1);
+    }
     const auto chosen = std::find_if(candidates.begin(), candidates.end(),
                                      [&](const TypedFit& c) { return of_type(c, options.imposed); });
     if (chosen == candidates.end())

@@ -30,8 +30,17 @@ Samples region_samples(const Model& model, const std::vector<int>& faces) {
     for (std::size_t i = 0; i < sorted.size(); i += stride) {
         const int f = sorted[i];
         double largest = 0;
-        for (int e = g.begin(f); e < g.end(f); ++e)
-            if (std::binary_search(sorted.begin(), sorted.end(), g.neighbor[e])) largest = std::max(largest, g.sagitta[e]);
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            if (!std::binary_search(sorted.begin(), sorted.end(), h)) continue;
+            largest = std::max(largest, g.sagitta[e]);
+            Vec3 sum = Vec3::Zero();
+            int shared = 0;
+            for (int u : model.triangles[f])
+                for (int v : model.triangles[h])
+                    if (u == v && shared < 2) sum += model.points[u], ++shared;
+            if (shared == 2) out.edge_midpoints.push_back(0.5 * sum);
+        }
         deviation.push_back(largest);
     }
     if (deviation.empty()) return out;

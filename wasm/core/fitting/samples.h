@@ -19,6 +19,9 @@ struct Samples {
     // How far the points may stray from their surface without telling anything about it:
     // a tessellation's own chordal deviation (region_samples); 0 for exact data.
     double tolerance = 0;
+    // Midpoints of edges between the faces (region_samples: those of at most a thousand
+    // faces): a surface holds the edges a tessellation laid along its straight lines.
+    std::vector<Vec3> edge_midpoints;
     void add(const Vec3& p, double w) {
         points.push_back(p);
         weights.push_back(w);

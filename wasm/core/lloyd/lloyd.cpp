@@ -593,8 +593,11 @@ std::vector<int> Lloyd::misfit_charts() const {
         // A chart of a handful of faces is as likely noise as structure: farthest-point
         // insertion finds it if it matters.
         if (owned[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
-        double error = 0, area = 0, noise = 0;  // area: a floor for rounding
-        for (int f : chart_faces_[c]) error += errors_[f], area += model_.areas[f], noise += face_noise_[f];
+        double error = 0, area = 0, noise = 0, off = 0;  // area: a floor for rounding
+        for (int f : chart_faces_[c]) {
+            error += errors_[f], area += model_.areas[f], noise += face_noise_[f];
+            if (off_normal(proxies_[labels_[f]].quadric, f)) off += model_.areas[f];
+        }
         // Charts are the part's structure: a chart whose own fit explains it much better
         // than the region that took it is a face of its own (under noise the comparison
         // with its own fit, not with the noise level, tells: a quadric bent over a
@@ -602,7 +605,13 @@ std::vector<int> Lloyd::misfit_charts() const {
         // No fit does better than the noise (a small chart's own fit follows it).
         const double own = options_.chart_factor * std::max(chart_error_[c], noise);
         const bool bent = crossings[c] > 0 && 2 * bends[c] >= crossings[c];
-        if (error > own + 1e-12 * area || bent) excess.emplace_back(std::max(error - own, 0.0) + (bent ? error : 0.0), c);
+        // Nor does its own fit tell when the chart is several surfaces (the rounded rim of
+        // a plate, one facet tall, which the regions of the faces above and below share):
+        // a chart whose faces turn away from the surfaces of the regions holding most of
+        // it, beyond what its noise explains, is missed too.
+        const bool turned_away = 2 * off > area && error > options_.chart_factor * options_.chart_factor * noise;
+        if (error > own + 1e-12 * area || bent || turned_away)
+            excess.emplace_back(std::max(error - own, 0.0) + (bent ? error : 0.0), c);
     }
     std::sort(excess.begin(), excess.end(), [](const auto& a, const auto& b) {
         return a.first != b.first ? a.first > b.first : a.second < b.second;
