@@ -264,6 +264,24 @@ void append_open(std::vector<Vec3>& loop, const std::vector<Vec3>& piece) {
     loop.insert(loop.end(), piece.begin(), piece.end() - 1);
 }
 
+// Where the ray from a slot's centre along unit u meets the slot: two half-circle ends of
+// radius r centred at ±a along x, joined by flat sides at ±r along y (a = 0: a circle).
+// `piece`: 0 the flat side below, 1 above, 2 the end to the right, 3 to the left.
+struct SlotHit {
+    Vec3 offset;  // from the centre
+    int piece;
+};
+SlotHit slot_hit(const Vec3& u, double a, double r) {
+    if (a > 0 && std::abs(u.y()) > 0) {
+        const double t = r / std::abs(u.y());
+        if (std::abs(t * u.x()) <= a) return {t * u, u.y() > 0 ? 1 : 0};
+    }
+    const Vec3 centre(u.x() > 0 ? a : -a, 0, 0);
+    const double along = u.dot(centre);
+    const double t = along + std::sqrt(along * along - centre.squaredNorm() + r * r);
+    return {t * u, u.x() > 0 ? 2 : 3};
+}
+
 // A box with a cylindrical boss on top and a through hole: 9 faces.
 Part box_boss_hole(const PartOptions& o) {
     PartBuilder b(o);
@@ -537,17 +555,7 @@ Part slotted_block(const PartOptions& o) {
                                   std::abs(d.y()) > 0 ? D / 2 / std::abs(d.y()) : 1e300);
         return Vec3(c + t * d);
     };
-    auto to_slot = [&](const Vec3& d) {
-        const Vec3 u = d.normalized();
-        if (std::abs(u.y()) > 0) {
-            const double t = r / std::abs(u.y());
-            if (std::abs(t * u.x()) <= a) return Vec3(c + t * u);
-        }
-        const Vec3 centre(u.x() > 0 ? a : -a, 0, 0);
-        const double along = u.dot(centre);
-        const double t = along + std::sqrt(along * along - centre.squaredNorm() + r * r);
-        return Vec3(c + t * u);
-    };
+    auto to_slot = [&](const Vec3& d) { return Vec3(c + slot_hit(d.normalized(), a, r).offset); };
     struct Ray {
         double angle;
         Vec3 inner, outer;
@@ -669,7 +677,6 @@ Part rounded_block(const PartOptions& o) {
     return b.finish("rounded_block");
 }
 
-
 // Three separate plates of an assembly, each 3 % of its length thick, with rounded
 // corners (quarter cylinders tangent to the sides) and a through slot or a round hole:
 // 14 + 11 + 14 = 39 faces on three components, the narrow sides and corner strips one
@@ -705,7 +712,7 @@ Part plate_assembly(const PartOptions& o) {
         const int wall_high = slot_a > 0 ? b.surface(plane(place({0, slot_r, 0}), -(R * Vec3::UnitY()))) : -1;
         const int end_left = slot_a > 0 ? b.surface(cylinder(place({-slot_a, 0, 0}), R * Vec3::UnitZ(), slot_r)) : end_right;
 
-        // Where the ray from the centre along u meets the outline and the slot, and on which face.
+        // Where the ray from the centre along u meets the outline, and on which face.
         auto outline_hit = [&](const Vec3& u, int* face) {
             const double tx = std::abs(u.x()) > 0 ? A / std::abs(u.x()) : 1e300;
             const double ty = std::abs(u.y()) > 0 ? B / std::abs(u.y()) : 1e300;
@@ -720,19 +727,7 @@ Part plate_assembly(const PartOptions& o) {
             if (face) *face = tx <= ty ? side[u.x() > 0 ? 0 : 2] : side[u.y() > 0 ? 1 : 3];
             return p;
         };
-        auto slot_hit = [&](const Vec3& u, int* face) {
-            if (slot_a > 0 && std::abs(u.y()) > 0) {
-                const double t = slot_r / std::abs(u.y());
-                if (std::abs(t * u.x()) <= slot_a) {
-                    if (face) *face = u.y() > 0 ? wall_high : wall_low;
-                    return Vec3(t * u);
-                }
-            }
-            const Vec3 m(u.x() > 0 ? slot_a : -slot_a, 0, 0);
-            const double along = u.dot(m);
-            if (face) *face = u.x() > 0 ? end_right : end_left;
-            return Vec3((along + std::sqrt(along * along - m.squaredNorm() + slot_r * slot_r)) * u);
-        };
+        const int slot_face[4] = {wall_low, wall_high, end_right, end_left};
 
         // Samples of both loops, each a ray from the centre that meets the other loop.
         // Rays in order of a pseudo-angle from + − ÷ only (libm's atan2 differs between
@@ -748,7 +743,7 @@ Part plate_assembly(const PartOptions& o) {
             Vec3 inner, outer;
         };
         std::vector<Ray> rays;
-        auto add_outer = [&](const Vec3& p) { rays.push_back({pseudo_angle(p), 0, slot_hit(p.normalized(), nullptr), p}); };
+        auto add_outer = [&](const Vec3& p) { rays.push_back({pseudo_angle(p), 0, slot_hit(p.normalized(), slot_a, slot_r).offset, p}); };
         auto add_inner = [&](const Vec3& p) { rays.push_back({pseudo_angle(p), 1, p, outline_hit(p.normalized(), nullptr)}); };
         auto arc = [&](const Vec3& m, double r, double from, int n, const std::function<void(const Vec3&)>& add) {
             const std::vector<double> t = b.spacing(n);
@@ -795,7 +790,7 @@ Part plate_assembly(const PartOptions& o) {
             const Vec3 u = (rays[i].outer.normalized() + next.outer.normalized()).normalized();
             int face;
             outline_hit(u, &face), outer_face.push_back(face);
-            slot_hit(u, &face), inner_face.push_back(face);
+            inner_face.push_back(slot_face[slot_hit(u, slot_a, slot_r).piece]);
         }
         const int rows = b.count(8);
         b.band(place_all(outer), place_all(inner), rows, true, bottom);
@@ -812,6 +807,7 @@ Part plate_assembly(const PartOptions& o) {
     plate(upright, Vec3(0, 1.3, 0.3), 0.35);
     return b.finish("plate_assembly");
 }
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {

@@ -34,12 +34,8 @@ Samples region_samples(const Model& model, const std::vector<int>& faces) {
             const int h = g.neighbor[e];
             if (!std::binary_search(sorted.begin(), sorted.end(), h)) continue;
             largest = std::max(largest, g.sagitta[e]);
-            Vec3 sum = Vec3::Zero();
-            int shared = 0;
-            for (int u : model.triangles[f])
-                for (int v : model.triangles[h])
-                    if (u == v && shared < 2) sum += model.points[u], ++shared;
-            if (shared == 2) out.edge_midpoints.push_back(0.5 * sum);
+            const std::array<int, 2> edge = shared_edge(model, f, h);
+            if (edge[0] >= 0) out.edge_midpoints.push_back(0.5 * (model.points[edge[0]] + model.points[edge[1]]));
         }
         deviation.push_back(largest);
     }

@@ -300,12 +300,9 @@ bool polygonal_arc_chord(const Model& model, const std::vector<Vec3>& raw, int f
     };
     auto bend_of = [&](int a, int link) {
         const int b = g.neighbor[link];
-        int shared[2] = {-1, -1}, k = 0;
-        for (int u : model.triangles[a])
-            for (int v : model.triangles[b])
-                if (u == v && k < 2) shared[k++] = u;
+        const std::array<int, 2> shared = shared_edge(model, a, b);
         Bend out{};
-        if (k < 2) return out;
+        if (shared[0] < 0) return out;
         const Vec3 &p = model.points[shared[0]], &q = model.points[shared[1]];
         out.from = p, out.length = (q - p).norm(), out.direction = (q - p) / std::max(out.length, 1e-300);
         out.middle = 0.5 * (p + q), out.angle = turn(g, raw, a, link);

@@ -130,6 +130,15 @@ Model make_model(const Mesh& mesh) {
     return model;
 }
 
+std::array<int, 2> shared_edge(const Model& model, int a, int b) {
+    std::array<int, 2> shared{-1, -1};
+    int k = 0;
+    for (int u : model.triangles[a])
+        for (int v : model.triangles[b])
+            if (u == v && k < 2) shared[k++] = u;
+    return k == 2 ? shared : std::array<int, 2>{-1, -1};
+}
+
 Moments moments_of(const Model& model, const std::vector<int>& faces) {
     Moments sum{};
     for (int f : faces) add_to(sum, model.moments[f]);

@@ -5,6 +5,7 @@
 #include "io/mesh.h"
 #include "geometry/moments.h"
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -44,6 +45,9 @@ Model make_model(const Mesh& mesh);
 
 // Σ of the faces' moments.
 Moments moments_of(const Model& model, const std::vector<int>& faces);
+
+// The two vertices faces a and b share (in a's order), or {-1, -1} when they share no edge.
+std::array<int, 2> shared_edge(const Model& model, int a, int b);
 
 // Pairs of labels (a < b) of adjacent faces, sorted: the region adjacency of a labelling.
 std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels);
