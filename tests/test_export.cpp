@@ -1,4 +1,5 @@
 #include "export/gltf_export.h"
+#include "export/palette.h"
 #include "io/mesh_io.h"
 #include "export/report.h"
 #include "shapes.h"
@@ -146,4 +147,23 @@ TEST(Export, WithoutProjectionOnlyTheInputNode) {
     Options o = test::with_proxies(3);
     o.project = false;
     export_checked(capsule.mesh, o, "capsule_unprojected.glb");
+}
+
+// Any two of the first regions' colours must be told apart on a shaded mesh, whatever
+// their ids: neighbours on the mesh may have any ids. (The golden-ratio hue palette this
+// replaced gave ids 0 and 34 nearly the same colour: 0.004 apart.)
+TEST(Palette, TheFirstRegionsColoursAreFarApart) {
+    for (const auto& [count, least] : std::vector<std::pair<int, double>>{{16, 0.09}, {32, 0.06}, {64, 0.04}}) {
+        double closest = 1;
+        for (int i = 0; i < count; ++i)
+            for (int j = 0; j < i; ++j) closest = std::min(closest, vqsa::color_difference(vqsa::region_color(i), vqsa::region_color(j)));
+        EXPECT_GE(closest, least) << "among the first " << count << " regions";
+    }
+    // Light enough to show shading, coloured enough not to pass for the unlabelled grey.
+    for (int i = 0; i < vqsa::kRegionPaletteSize; ++i) {
+        const vqsa::Vec3 lab = vqsa::oklab(vqsa::region_color(i));
+        EXPECT_GE(lab.x(), 0.6) << i;
+        EXPECT_LE(lab.x(), 0.84) << i;
+        EXPECT_GE(std::hypot(lab.y(), lab.z()), 0.079) << i;
+    }
 }
