@@ -285,6 +285,28 @@ TEST(CadExtraction, AThinPlatesHoleIsACylinder) {
     EXPECT_EQ(holes, 5);  // the round hole and the slots' four ends
 }
 
+TEST(CadExtraction, AHexNutsCountersinksAreConesAtItsFaceCount) {
+    // Beyond the corpus: a hex nut whose bore is countersunk 45° at both ends, the cones two
+    // facets tall between bends of 45° (below the crease angle: one chart holds the flat
+    // annuli, both cones and the bore). At its face count, clean, in a random pose, every
+    // face is found and typed. (Automatic, each cone takes two rows of the bore as a
+    // hyperboloid: bench/RESULTS.md §4.)
+    const CorpusCase c = cad_corpus({"hex_nut"}).front();
+    ASSERT_EQ(c.variant, "clean");
+    const Part part = make_part(c.part, c.options);
+    const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed));
+    EXPECT_EQ(o.regions, 11);
+    EXPECT_GE(o.accuracy, 0.999);
+    int cones = 0;
+    for (const ProxyResult& p : o.result.proxies) {
+        if (p.type == QuadricType::cylinder) EXPECT_NEAR(p.shape.radius, 0.25, 1e-6);
+        if (p.type != QuadricType::cone) continue;
+        ++cones;
+        EXPECT_NEAR(p.shape.half_angle, std::atan(1.0), 1e-6);
+    }
+    EXPECT_EQ(cones, 2);
+}
+
 TEST(CadExtraction, AFacetColumnBesideItsPlaneGoesBackToItsFillet) {
     // The app's own example (canonical pose, seed 1, automatic count): a plane face and the
     // first facet column of the fillet beside it lie exactly on a pair of planes, the column

@@ -808,6 +808,45 @@ Part plate_assembly(const PartOptions& o) {
     return b.finish("plate_assembly");
 }
 
+// A hex nut: six flat sides, top and bottom, a bore countersunk 45° at both ends (cones
+// one or two facets tall between the bore and the flat annuli): 11 faces.
+Part hex_nut(const PartOptions& o) {
+    PartBuilder b(o);
+    const double circumradius = 0.6, T = 0.5, bore_r = 0.25, sink_r = 0.33, depth = sink_r - bore_r;
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, T}, Vec3::UnitZ()));
+    const int bore = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), bore_r));
+    // A cone's apex lies on the axis where its generator reaches r = 0.
+    const double half_angle = std::atan(1.0);
+    const int sink_top = b.surface({QuadricType::cone, Vec3(0, 0, T - sink_r), Vec3::UnitZ(), 0, half_angle});
+    const int sink_bottom = b.surface({QuadricType::cone, Vec3(0, 0, sink_r), -Vec3::UnitZ(), 0, half_angle});
+    std::vector<int> side;
+    std::vector<Vec3> hexagon, corners;
+    std::vector<int> segment_side;
+    for (int k = 0; k < 6; ++k) {
+        const double a = kPi / 3 * k;
+        corners.emplace_back(circumradius * portable::cos(a), circumradius * portable::sin(a), 0);
+    }
+    for (int k = 0; k < 6; ++k) {
+        const Vec3 normal = (corners[k] + corners[(k + 1) % 6]).normalized();
+        side.push_back(b.surface(plane(corners[k], normal)));
+        const std::vector<Vec3> edge = b.segment(corners[k], corners[(k + 1) % 6], b.count(8));
+        append_open(hexagon, edge);
+        segment_side.insert(segment_side.end(), edge.size() - 1, side.back());
+    }
+    const Vec3 axis_bottom = Vec3::Zero(), axis_top(0, 0, T);
+    const auto sink_bottom_outer = onto_circle(hexagon, axis_bottom, sink_r);
+    const auto sink_top_outer = at_height(sink_bottom_outer, T);
+    const auto bore_bottom = at_height(onto_circle(hexagon, axis_bottom, bore_r), depth);
+    const auto bore_top = at_height(bore_bottom, T - depth);
+    b.band(hexagon, at_height(hexagon, T), b.count(5), true, [&](int j) { return segment_side[j]; });
+    b.band(at_height(hexagon, T), sink_top_outer, b.count(4), true, top);
+    b.band(sink_top_outer, bore_top, b.count(2), true, sink_top);
+    b.band(bore_top, bore_bottom, b.count(6), true, bore);
+    b.band(bore_bottom, sink_bottom_outer, b.count(2), true, sink_bottom);
+    b.band(sink_bottom_outer, hexagon, b.count(4), true, bottom);
+    return b.finish("hex_nut");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -818,6 +857,7 @@ std::vector<std::string> part_names() {
     std::vector<std::string> names = corpus_part_names();
     names.push_back("rounded_block");
     names.push_back("plate_assembly");
+    names.push_back("hex_nut");
     return names;
 }
 
@@ -830,6 +870,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "slotted_block") return slotted_block(options);
     if (name == "rounded_block") return rounded_block(options);
     if (name == "plate_assembly") return plate_assembly(options);
+    if (name == "hex_nut") return hex_nut(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 
