@@ -18,7 +18,7 @@ SeamSimplifier::SeamSimplifier(const Model& model, std::vector<int>& labels, std
                                const SeamOptions& options, const std::vector<char>* may_change)
     : model_(model), labels_(labels), proxies_(proxies), choices_(choices), crease_(crease), may_change_(may_change),
       options_(options),
-      regions_(proxies.size()), in_strip_(model.face_count(), 0) {
+      regions_(proxies.size()), in_strip_(model.face_count(), 0), vertex_kept_(model.points.size(), 0) {
     evaluator_.reset(model, quadrics_of(proxies));
     for (int f = 0; f < model.face_count(); ++f) {
         regions_[labels[f]].faces.push_back(f);
@@ -55,6 +55,19 @@ void SeamSimplifier::simplify(int a) {
         return select_model(thinned(region_samples(model_, rest), options_.screening_samples),
                             fit_region(moments_of(model_, rest), options_.fit).quadric, options_.selection);
     };
+    auto keeps_every_vertex = [&](int r, const std::vector<int>& strip) {
+        for (int f : strip) in_strip_[f] = 1;
+        for (int f : regions_[r].faces)
+            if (!in_strip_[f])
+                for (int v : model_.triangles[f]) vertex_kept_[v] = 1;
+        bool all = true;
+        for (int f : strip)
+            for (int v : model_.triangles[f]) all = all && vertex_kept_[v];
+        for (int f : regions_[r].faces)
+            for (int v : model_.triangles[f]) vertex_kept_[v] = 0;
+        for (int f : strip) in_strip_[f] = 0;
+        return all;
+    };
     auto may_change = [&](int r) { return !may_change_ || (*may_change_)[r]; };
     if (choices_[a].chosen.parameters <= plane_parameters || !may_change(a)) return;
     std::set<int> neighbours;
@@ -89,6 +102,9 @@ void SeamSimplifier::simplify(int a) {
         }
         for (int f : strip) in_strip_[f] = 0;
         if (strip.empty() || too_large) continue;
+        // A strip that takes none of a's vertices leaves the vertices its selection judges
+        // as they are: no simpler type (on coarse meshes, most one-face-deep strips).
+        if (keeps_every_vertex(a, strip)) continue;
         // Of those, the faces b explains better than a's surface without them does: a
         // band of a's own faces near the seam, within b's error, stays.
         const ModelChoice without = select_without(a, strip);

@@ -59,7 +59,8 @@ private:
     SeamOptions options_;
     FaceErrors evaluator_;
     std::vector<Region> regions_;
-    std::vector<char> in_strip_;  // scratch, per face
+    std::vector<char> in_strip_;     // scratch, per face
+    std::vector<char> vertex_kept_;  // scratch, per vertex
     int next_ = 0;
 };
 
