@@ -197,13 +197,17 @@ void find_charts(const DualGraph& g, const std::vector<char>& reliable, Features
         if (out.chart[f] < 0) grow(f, true);  // a component without a reliable face
 }
 
-// Per chart: the roughness of its vertices — how far each lies, along its normal, from
-// the mean of its neighbours (the umbrella) beyond what its neighbours do: a second
-// difference, so that the smooth curvature of a clean surface cancels and noise remains.
-// Scaled so that under noise it is the RMS distance a locally exact surface leaves
-// (samples at vertices and barycentres). A vertex on a crease is measured once per
-// chart, from that chart's faces only: the crease itself is no roughness.
-std::vector<double> chart_roughness(const Model& model, const std::vector<Vec3>& normal, const Features& out) {
+// Each vertex's roughness — how far it lies, along its normal, from the mean of its
+// neighbours (the umbrella) beyond what its neighbours do: a second difference, so that
+// the smooth curvature of a clean surface cancels and noise remains. A vertex on a crease
+// is measured once per chart, from that chart's faces only: the crease itself is no
+// roughness.
+struct VertexDeviations {
+    std::vector<int> chart, vertex;  // per measurement
+    std::vector<double> magnitude;
+};
+
+VertexDeviations vertex_deviations(const Model& model, const std::vector<Vec3>& normal, const Features& out) {
     const int n = model.face_count();
     const std::size_t vn = model.points.size();
     std::vector<int> vertex_chart(vn, -1);  // the chart of a vertex's faces, or -2 for several
@@ -251,33 +255,49 @@ std::vector<double> chart_roughness(const Model& model, const std::vector<Vec3>&
             neighbour_d[slot(t[i], out.chart[f])] +=
                 d[slot(t[(i + 1) % 3], out.chart[f])] + d[slot(t[(i + 2) % 3], out.chart[f])];
     }
-    // A chart's roughness is the median over its vertices (a bend inside a chart, a
-    // tangent edge between a cylinder and a chamfer, affects a line of vertices only).
-    // Under noise σ the second difference has a standard deviation of about 1.25 σ
-    // (median of its magnitude 0.674 of that), and a locally exact surface leaves an RMS
-    // of about 0.9 σ.
-    constexpr double kCalibration = 0.9 / (1.25 * 0.674);
-    std::vector<std::vector<double>> magnitudes(out.chart_count);
+    VertexDeviations out_deviations;
     std::vector<char> seen(slots, 0);
     for (int f = 0; f < n; ++f)
         for (int v : model.triangles[f]) {
             const int k = slot(v, out.chart[f]);
             if (seen[k] || !slot_count[k]) continue;
             seen[k] = 1;
-            magnitudes[out.chart[f]].push_back(std::abs(d[k] - neighbour_d[k] / slot_count[k]));
+            out_deviations.chart.push_back(out.chart[f]);
+            out_deviations.vertex.push_back(v);
+            out_deviations.magnitude.push_back(std::abs(d[k] - neighbour_d[k] / slot_count[k]));
         }
+    return out_deviations;
+}
+
+// Per chart: the median of its vertices' deviations (a bend inside a chart, a tangent edge
+// between a cylinder and a chamfer, affects a line of vertices only), scaled so that
+// under noise it is the RMS distance a locally exact surface leaves (samples at vertices
+// and barycentres). Where half a chart's vertices or more lie `beside_bend` (per vertex,
+// or empty; a countersink two facets tall between two bends), the median is one of
+// theirs: it is taken over the others.
+std::vector<double> chart_roughness(const VertexDeviations& deviations, int chart_count,
+                                    const std::vector<char>& beside_bend) {
+    // Under noise σ the second difference has a standard deviation of about 1.25 σ
+    // (median of its magnitude 0.674 of that), and a locally exact surface leaves an RMS
+    // of about 0.9 σ.
+    constexpr double kCalibration = 0.9 / (1.25 * 0.674);
+    std::vector<std::vector<double>> magnitudes(chart_count), away(chart_count);
+    for (std::size_t i = 0; i < deviations.magnitude.size(); ++i) {
+        magnitudes[deviations.chart[i]].push_back(deviations.magnitude[i]);
+        if (!beside_bend.empty() && !beside_bend[deviations.vertex[i]]) away[deviations.chart[i]].push_back(deviations.magnitude[i]);
+    }
     // Charts too small for a median of their own take the whole mesh's.
     auto median = [](std::vector<double> m) {
         if (m.empty()) return 0.0;
         std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
         return m[m.size() / 2];
     };
-    std::vector<double> all;
-    for (const std::vector<double>& m : magnitudes) all.insert(all.end(), m.begin(), m.end());
-    const double overall = kCalibration * median(std::move(all));
-    std::vector<double> roughness(out.chart_count, overall);
-    for (int c = 0; c < out.chart_count; ++c)
+    const double overall = kCalibration * median(deviations.magnitude);
+    std::vector<double> roughness(chart_count, overall);
+    for (int c = 0; c < chart_count; ++c) {
+        if (2 * away[c].size() <= magnitudes[c].size() && away[c].size() >= 30) magnitudes[c].swap(away[c]);
         if (magnitudes[c].size() >= 30) roughness[c] = kCalibration * median(std::move(magnitudes[c]));
+    }
     return roughness;
 }
 
@@ -369,32 +389,76 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     out.normals = filter_normals(g, raw, range, options.filter_iterations);
     out.crease = find_creases(g, out.normals, options.crease_angle);
     find_charts(g, reliable, out);
-    const std::vector<double> per_chart = chart_roughness(model, out.normals, out);
+    const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
+    std::vector<double> per_chart = chart_roughness(deviations, out.chart_count, {});
+
+    // Edges bent by more than half the crease angle are no chords of a smooth surface (a
+    // chamfer's, a countersink's), unless they are chords of a polygonal arc well beyond
+    // what the chart's noise does to a face's normal (about 2σ/width): noise puts bends
+    // beside bends anywhere. Per link.
+    const double smooth_limit = 0.5 * options.crease_angle * M_PI / 180, crease_limit = options.crease_angle * M_PI / 180;
+    std::vector<double> width(n);
+    for (int f = 0; f < n; ++f) width[f] = narrowest_width(model, f);  // a sliver's length is no chord
+    std::vector<double> angle(g.neighbor.size(), 0.0);
+    std::vector<char> chord(g.neighbor.size(), 0), candidate(g.neighbor.size(), 0);
+    for (int f = 0; f < n; ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            if (out.crease[e] || !(g.edge_length[e] > 0)) continue;
+            angle[e] = turn(g, raw, f, e);
+            if (angle[e] <= smooth_limit) {
+                chord[e] = 1;
+                continue;
+            }
+            const bool arc = polygonal_arc_chord(model, raw, f, e, crease_limit);
+            chord[e] = angle[e] >= 8 * per_chart[out.chart[f]] / width[f] && arc;
+            candidate[e] = !arc;
+        }
+    // A chart's roughness is no measure of its noise where more than half its vertices lie
+    // beside bends (a countersink two facets tall between the bore and the face): measured
+    // away from the edges that may be bends, it tells which are (beyond what the noise does
+    // to the normal of the narrower face: a sliver's normal is no evidence of a bend), and
+    // then away from those.
+    auto beside = [&](const std::vector<char>& links) {
+        std::vector<char> on(model.points.size(), 0), near;
+        bool any = false;
+        for (int f = 0; f < n; ++f)
+            for (int e = g.begin(f); e < g.end(f); ++e)
+                if (links[e]) {
+                    any = true;
+                    for (int v : shared_edge(model, f, g.neighbor[e]))
+                        if (v >= 0) on[v] = 1;
+                }
+        if (!any) return near;
+        // The umbrella's second difference reaches one ring beyond the bend's vertices.
+        near = on;
+        for (int f = 0; f < n; ++f) {
+            const Triangle& t = model.triangles[f];
+            if (on[t[0]] || on[t[1]] || on[t[2]]) near[t[0]] = near[t[1]] = near[t[2]] = 1;
+        }
+        return near;
+    };
+    const std::vector<char> beside_candidates = beside(candidate);
+    if (!beside_candidates.empty()) {
+        const std::vector<double> away = chart_roughness(deviations, out.chart_count, beside_candidates);
+        std::vector<char> bend(g.neighbor.size(), 0);
+        for (int f = 0; f < n; ++f)
+            for (int e = g.begin(f); e < g.end(f); ++e)
+                bend[e] = candidate[e] && angle[e] >= 8 * away[out.chart[f]] / std::min(width[f], width[g.neighbor[e]]);
+        const std::vector<char> beside_bends = beside(bend);
+        if (!beside_bends.empty()) per_chart = chart_roughness(deviations, out.chart_count, beside_bends);
+    }
 
     // A clean tessellation has roughness too: its flat facets stand off the smooth
     // surface by the sagitta of the arc across them, about altitude × dihedral / 8 over
-    // the edges bent by less than half the crease angle (the largest of a face's; more is
-    // a bend, a chamfer's edge, not a chord of a smooth surface); a fit leaves an RMS of
-    // up to as much, the vertices lying on the surface. Per face: a curved face
-    // beside a flat one in a chart (a fillet) keeps its own.
+    // the chords (the largest of a face's); a fit leaves an RMS of up to as much, the
+    // vertices lying on the surface. Per face: a curved face beside a flat one in a chart
+    // (a fillet) keeps its own.
     constexpr double kSagittaRms = 1.0;
-    const double smooth_limit = 0.5 * options.crease_angle * M_PI / 180, crease_limit = options.crease_angle * M_PI / 180;
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
-        // Across the face's narrowest width: a sliver's length is no chord.
-        const double width = narrowest_width(model, f);
         double sagitta = 0;
-        for (int e = g.begin(f); e < g.end(f); ++e) {
-            if (out.crease[e] || !(g.edge_length[e] > 0)) continue;
-            const double angle = turn(g, raw, f, e);
-            // A bend (a chamfer's edge), not a chord, unless it is one of a polygonal arc's
-            // and well beyond what the chart's noise does to a face's normal (about 2σ/width):
-            // noise puts bends beside bends anywhere.
-            const bool chord = angle <= smooth_limit ||
-                               (angle >= 8 * per_chart[out.chart[f]] / width && polygonal_arc_chord(model, raw, f, e, crease_limit));
-            if (!chord) continue;
-            sagitta = std::max(sagitta, width * angle / 8);
-        }
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            if (chord[e]) sagitta = std::max(sagitta, width[f] * angle[e] / 8);
         out.roughness[f] = std::hypot(per_chart[out.chart[f]], kSagittaRms * sagitta);
     }
     return out;
