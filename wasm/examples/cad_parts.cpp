@@ -129,6 +129,8 @@ public:
         for (int j = 0; j < m; ++j) triangle(ring[j], ring[(j + 1) % m], c, label);
     }
 
+    void triangle(const Vec3& a, const Vec3& b, const Vec3& c, int label) { triangle(vertex(a), vertex(b), vertex(c), label); }
+
     Part finish(const std::string& name);
 
     Random& random() { return random_; }
@@ -847,6 +849,74 @@ Part hex_nut(const PartOptions& o) {
     return b.finish("hex_nut");
 }
 
+// A box with every edge chamfered 45°: 6 faces, 12 chamfer strips two facets wide between
+// bends of 45° (below the crease angle, so the whole box is one chart), 8 corner triangles:
+// 26 planes.
+Part chamfered_box(const PartOptions& o) {
+    PartBuilder b(o);
+    const Vec3 size(1.2, 0.8, 0.6);
+    const double c = 0.06;
+    const int steps[3] = {b.count(12), b.count(8), b.count(6)};
+    // Face (axis k, side s): the plane coord_k = s ? size_k : 0. Its inset corner nearest the
+    // box corner with sides `corner`: the other coordinates c in from that corner.
+    auto inset_corner = [&](int k, const std::array<int, 3>& corner) {
+        Vec3 p;
+        for (int i = 0; i < 3; ++i) p[i] = i == k ? corner[i] * size[i] : (corner[i] ? size[i] - c : c);
+        return p;
+    };
+    int face_id[3][2];
+    for (int k = 0; k < 3; ++k)
+        for (int side = 0; side < 2; ++side) {
+            Vec3 normal = Vec3::Zero(), point = Vec3::Zero();
+            normal[k] = side ? 1 : -1, point[k] = side * size[k];
+            face_id[k][side] = b.surface(plane(point, normal));
+        }
+    // The inset edge of face (k, s) beside face (m, t), along the third axis j, low to high.
+    std::map<std::array<int, 4>, std::vector<Vec3>> edge;
+    for (int k = 0; k < 3; ++k)
+        for (int s = 0; s < 2; ++s)
+            for (int m = 0; m < 3; ++m)
+                for (int t = 0; t < 2; ++t) {
+                    if (m == k) continue;
+                    const int j = 3 - k - m;
+                    std::array<int, 3> low{}, high{};
+                    low[k] = high[k] = s, low[m] = high[m] = t, low[j] = 0, high[j] = 1;
+                    edge[{k, s, m, t}] = b.segment(inset_corner(k, low), inset_corner(k, high), steps[j]);
+                }
+    for (int k = 0; k < 3; ++k)
+        for (int s = 0; s < 2; ++s)
+            for (int m = k + 1; m < 3; ++m)
+                for (int t = 0; t < 2; ++t) {
+                    Vec3 normal = Vec3::Zero();
+                    normal[k] = s ? 1 : -1, normal[m] = t ? 1 : -1;
+                    b.band(edge[{k, s, m, t}], edge[{m, t, k, s}], b.count(2), false,
+                           b.surface(plane(edge[{k, s, m, t}].front(), normal)));
+                }
+    // Each face: its inset rectangle, filled; axes a, b the other two in cyclic order.
+    for (int k = 0; k < 3; ++k)
+        for (int s = 0; s < 2; ++s) {
+            const int a = (k + 1) % 3, bb = (k + 2) % 3;
+            std::vector<Vec3> loop;
+            auto reversed = [](std::vector<Vec3> v) { return std::vector<Vec3>(v.rbegin(), v.rend()); };
+            append_open(loop, edge[{k, s, bb, 0}]);
+            append_open(loop, edge[{k, s, a, 1}]);
+            append_open(loop, reversed(edge[{k, s, bb, 1}]));
+            append_open(loop, reversed(edge[{k, s, a, 0}]));
+            Vec3 centre = 0.5 * size;
+            centre[k] = s * size[k];
+            b.fill(loop, centre, b.count(6), face_id[k][s]);
+        }
+    for (int x = 0; x < 2; ++x)
+        for (int y = 0; y < 2; ++y)
+            for (int z = 0; z < 2; ++z) {
+                const std::array<int, 3> corner{x, y, z};
+                const Vec3 normal(x ? 1 : -1, y ? 1 : -1, z ? 1 : -1);
+                const Vec3 p = inset_corner(0, corner), q = inset_corner(1, corner), r = inset_corner(2, corner);
+                b.triangle(p, q, r, b.surface(plane(p, normal)));
+            }
+    return b.finish("chamfered_box");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -858,6 +928,7 @@ std::vector<std::string> part_names() {
     names.push_back("rounded_block");
     names.push_back("plate_assembly");
     names.push_back("hex_nut");
+    names.push_back("chamfered_box");
     return names;
 }
 
@@ -871,6 +942,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "rounded_block") return rounded_block(options);
     if (name == "plate_assembly") return plate_assembly(options);
     if (name == "hex_nut") return hex_nut(options);
+    if (name == "chamfered_box") return chamfered_box(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 
