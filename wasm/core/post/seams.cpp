@@ -48,24 +48,21 @@ void SeamSimplifier::simplify(int a) {
         for (int f : strip) in_strip_[f] = 0;
         return rest;
     };
-    // A first look at a region without a strip, on a few hundred of its vertices: most
-    // seams of a free-form surface change no type, and this tells them cheaply.
-    auto select_without = [&](int r, const std::vector<int>& strip) {
-        const std::vector<int> rest = faces_without(r, strip);
+    // A first look at a region without a strip (`rest`), on a few hundred of its vertices:
+    // most seams of a free-form surface change no type, and this tells them cheaply.
+    auto screen = [&](const std::vector<int>& rest) {
         return select_model(thinned(region_samples(model_, rest), options_.screening_samples),
                             fit_region(moments_of(model_, rest), options_.fit).quadric, options_.selection);
     };
-    auto keeps_every_vertex = [&](int r, const std::vector<int>& strip) {
-        for (int f : strip) in_strip_[f] = 1;
-        for (int f : regions_[r].faces)
-            if (!in_strip_[f])
-                for (int v : model_.triangles[f]) vertex_kept_[v] = 1;
+    // Whether every vertex of the strip is also one of `rest`.
+    auto keeps_every_vertex = [&](const std::vector<int>& rest, const std::vector<int>& strip) {
+        for (int f : rest)
+            for (int v : model_.triangles[f]) vertex_kept_[v] = 1;
         bool all = true;
         for (int f : strip)
             for (int v : model_.triangles[f]) all = all && vertex_kept_[v];
-        for (int f : regions_[r].faces)
+        for (int f : rest)
             for (int v : model_.triangles[f]) vertex_kept_[v] = 0;
-        for (int f : strip) in_strip_[f] = 0;
         return all;
     };
     auto may_change = [&](int r) { return !may_change_ || (*may_change_)[r]; };
@@ -104,10 +101,11 @@ void SeamSimplifier::simplify(int a) {
         if (strip.empty() || too_large) continue;
         // A strip that takes none of a's vertices leaves the vertices its selection judges
         // as they are: no simpler type (on coarse meshes, most one-face-deep strips).
-        if (keeps_every_vertex(a, strip)) continue;
+        const std::vector<int> without_strip = faces_without(a, strip);
+        if (keeps_every_vertex(without_strip, strip)) continue;
         // Of those, the faces b explains better than a's surface without them does: a
         // band of a's own faces near the seam, within b's error, stays.
-        const ModelChoice without = select_without(a, strip);
+        const ModelChoice without = screen(without_strip);
         if (without.chosen.parameters >= choices_[a].chosen.parameters) continue;
         FaceErrors rival;
         rival.reset(model_, {without.chosen.quadric});
