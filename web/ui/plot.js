@@ -31,7 +31,9 @@ export function drawPlot(canvas, growth, result = null, marker = null) {
   const y = (r) => 6 + ((hi - Math.log10(r)) / (hi - lo)) * (h - pad - 2);
   g.fillStyle = ink;
   g.font = '10px sans-serif';
-  for (let e = lo; e <= hi; ++e) g.fillText(`1e${e}`, 0, y(10 ** e) + 3);
+  // A label every few decades where one each would overlap (an exact part's run spans 15).
+  const step = Math.max(1, Math.ceil(((hi - lo) * 12) / (h - pad - 2)));
+  for (let e = hi; e >= lo; e -= step) g.fillText(`1e${e}`, 0, y(10 ** e) + 3);
   g.fillText('proxies', w / 2 - 15, h - 4);
   g.fillText('1', pad - 2, h - 14);
   g.fillText(String(maxN), w - 22, h - 14);
