@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -104,8 +105,16 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
         std::fprintf(stderr, "%s: %d proxies, stopped %s, accuracy %.4f\n", name.c_str(), o.proxies, o.stop.c_str(), o.accuracy);
         for (const vqsa::ProxyResult& p : r.proxies) {
             const int face = score.face_of[p.id];
-            std::fprintf(stderr, "  %2d %-22s faces %5d area %.4f rms %.2e  -> true %d %s\n", p.id, vqsa::type_name(p.type),
+            std::fprintf(stderr, "  %2d %-22s faces %5d area %.4f rms %.2e  -> true %d %s", p.id, vqsa::type_name(p.type),
                          p.faces, p.area, p.rms_error, face, face >= 0 ? vqsa::type_name(part.surfaces[face].type) : "-");
+            // Where the region's faces come from: true face (triangles), the largest first.
+            std::map<int, int> from;
+            for (std::size_t t = 0; t < r.face_labels.size(); ++t)
+                if (r.face_labels[t] == p.id) ++from[part.face[t]];
+            std::vector<std::pair<int, int>> sources(from.begin(), from.end());
+            std::sort(sources.begin(), sources.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+            for (const auto& [f, n] : sources) std::fprintf(stderr, " %d:%d", f, n);
+            std::fprintf(stderr, "\n");
         }
     }
     return o;

@@ -434,6 +434,36 @@ TEST(CadExtraction, NoisyFilletsStayApartFromTheirPlanesAtACount) {
     EXPECT_EQ(o.two_part, 0);
 }
 
+TEST(CadExtraction, BandsAndStripsOneFacetAcrossAreTheSurfacesTheirEdgesLieOn) {
+    // abc_round_cap.stl's four bands, one row of facets each, were spheres through their two
+    // circles of vertices, which the STL's float coordinates leave 1e-8 off every candidate:
+    // two are cylinders (1.5 inch), two 15° cones.
+    const Mesh cap = read_mesh_file(test::shared_mesh("abc_round_cap.stl"));
+    const Result r = test::approximate(cap, counted(0));
+    int cones = 0, cylinders = 0;
+    for (const ProxyResult& p : r.proxies) {
+        EXPECT_NE(p.type, QuadricType::sphere) << "region " << p.id;
+        if (p.type == QuadricType::cone) {
+            ++cones;
+            EXPECT_NEAR(p.shape.half_angle * 180 / M_PI, 15, 1e-3);
+        }
+        if (p.type == QuadricType::cylinder) ++cylinders;
+    }
+    EXPECT_EQ(cones, 2);
+    EXPECT_EQ(cylinders, 4);
+    // The noisy L-bracket's end faces, one facet wide: the end that was an elliptic paraboloid
+    // through its two noisy rows of vertices is a plane.
+    const auto [part, o] = corpus_case_at_true_count("l_bracket", "noisy");
+    int planes = 0;
+    for (const ProxyResult& p : o.result.proxies) {
+        const int face = o.score.face_of[p.id];
+        if (face < 0 || !o.score.clean_match[p.id] || part.surfaces[face].type != QuadricType::plane) continue;
+        EXPECT_EQ(p.type, QuadricType::plane) << "region " << p.id << " of " << p.faces << " faces";
+        ++planes;
+    }
+    EXPECT_GE(planes, 7);
+}
+
 TEST(CadExtraction, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
     const std::pair<const char*, int> meshes[] = {
         {"fandisk.off", 22}, {"joint.off", 30},          {"csg.off", 10},          {"block.off", 20},

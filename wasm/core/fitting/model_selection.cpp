@@ -41,6 +41,24 @@ bool of_type(const TypedFit& c, ImposedType type) {
     return false;
 }
 
+// How much farther (in distance) a candidate may lie from a region's edge midpoints than
+// the candidate lying nearest them, beyond the tessellation's deviation.
+constexpr double kRunAway = 10;
+
+// Mean squared Taubin distance of a region's edge midpoints to q; with `beyond_tolerance`,
+// only what lies beyond each midpoint's chordal deviation counts (a chord strays from its
+// surface by that much, and a surface that holds the chord closer is no likelier).
+double midpoint_mean_square(const Samples& s, const Quadric& q, bool beyond_tolerance) {
+    const double a = q.hessian_norm();
+    double sum = 0;
+    for (std::size_t i = 0; i < s.edge_midpoints.size(); ++i) {
+        const double d = taubin_distance(q, a, s.edge_midpoints[i]);
+        const double t = beyond_tolerance ? s.midpoint_tolerances[i] : 0;
+        sum += std::max(d * d - t * t, 0.0);
+    }
+    return sum / s.edge_midpoints.size();
+}
+
 constexpr ImposedType kImposedTypes[] = {ImposedType::none, ImposedType::plane, ImposedType::sphere,
                                          ImposedType::cylinder, ImposedType::cone, ImposedType::quadric};
 
@@ -127,33 +145,44 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     }
 
     const double n = static_cast<double>(s.points.size());
-    const double floor2 = (options.floor * radius) * (options.floor * radius) + s.tolerance * s.tolerance;
+    const double exact2 = (options.floor * radius) * (options.floor * radius) + options.stored * options.stored;
+    const double floor2 = exact2 + s.tolerance * s.tolerance;
     for (TypedFit& c : candidates) c.bic = n * std::log(c.rms * c.rms + floor2) + c.parameters * std::log(n);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
-    // Where several types hold the vertices to rounding, the vertices cannot tell them
-    // apart (a band one facet tall holds two circles: on a cylinder, a sphere and
-    // many quadrics); a tessellation lays its edges along a surface's straight lines, so
-    // the one that also holds the edges' midpoints best, by the same criterion, is it.
-    const double exact2 = (options.floor * radius) * (options.floor * radius);
-    if (!s.edge_midpoints.empty() && options.imposed == ImposedType::none && candidates.front().rms * candidates.front().rms <= exact2) {
-        const double m = static_cast<double>(s.edge_midpoints.size());
-        auto with_edges = [&](const TypedFit& c) {
-            const double a = c.quadric.hessian_norm();
-            double sum = 0;
-            for (const Vec3& p : s.edge_midpoints) {
-                const double d = taubin_distance(c.quadric, a, p);
-                sum += d * d;
+    if (!s.edge_midpoints.empty() && options.imposed == ImposedType::none) {
+        if (candidates.front().rms * candidates.front().rms <= exact2) {
+            // Where several types hold the vertices to rounding, the vertices cannot tell
+            // them apart (a band one facet tall holds two circles: on a cylinder, a sphere
+            // and many quadrics); a tessellation lays its edges along a surface's straight
+            // lines, so the one that also holds the edges' midpoints best, by the same
+            // criterion, is it.
+            const double m = static_cast<double>(s.edge_midpoints.size());
+            auto with_edges = [&](const TypedFit& c) { return c.bic + m * std::log(midpoint_mean_square(s, c.quadric, true) + floor2); };
+            auto best = candidates.begin();
+            double best_score = with_edges(*best);
+            for (auto c = candidates.begin() + 1; c != candidates.end(); ++c) {
+                if (!(c->rms * c->rms <= exact2)) continue;
+                const double score = with_edges(*c);
+                if (score < best_score) best = c, best_score = score;
             }
-            return c.bic + m * std::log(sum / m + floor2);
-        };
-        auto best = candidates.begin();
-        double best_score = with_edges(*best);
-        for (auto c = candidates.begin() + 1; c != candidates.end(); ++c) {
-            if (!(c->rms * c->rms <= exact2)) continue;
-            const double score = with_edges(*c);
-            if (score < best_score) best = c, best_score = score;
+            std::rotate(candidates.begin(), best, best + 1);
+        } else {
+            // Nor, under noise, do the vertices say where the surface runs between them:
+            // the two rows of vertices of a flat strip one facet wide lie closer to a
+            // paraboloid curving sharply away from the strip than to their plane. A
+            // candidate that strays from the edges' midpoints by an order of magnitude
+            // more than another, beyond the tessellation's own deviation, is not the
+            // mesh's surface.
+            double allowed = floor2;
+            for (double t : s.midpoint_tolerances) allowed += t * t / s.midpoint_tolerances.size();
+            std::vector<double> strays;
+            for (const TypedFit& c : candidates) strays.push_back(midpoint_mean_square(s, c.quadric, false));
+            const double least = *std::min_element(strays.begin(), strays.end());
+            std::vector<TypedFit> kept;
+            for (std::size_t i = 0; i < candidates.size(); ++i)
+                if (strays[i] <= kRunAway * kRunAway * (least + allowed)) kept.push_back(candidates[i]);
+            if (!kept.empty()) candidates.swap(kept);
         }
-        std::rotate(candidates.begin(), best, best + 1);
     }
     const auto chosen = std::find_if(candidates.begin(), candidates.end(),
                                      [&](const TypedFit& c) { return of_type(c, options.imposed); });

@@ -40,6 +40,10 @@ struct ModelSelectionOptions {
     // Mean squared distances below (floor × region radius)² count as zero: every type
     // that contains the surface fits a clean tessellation's vertices to rounding.
     double floor = 1e-9;
+    // Nor do distances below what the input stores (RMS, in the samples' units; the
+    // library selects in the unit frame, where this is kStoredPrecision): a float STL's
+    // rounding must not make a sphere of a cylinder's band.
+    double stored = kStoredPrecision;
     ClassifyOptions classify;
     // The candidate of this type wins whatever the criterion says (if its fit exists).
     ImposedType imposed = ImposedType::none;
@@ -51,9 +55,13 @@ struct ModelSelectionOptions {
 // cylinder (5), circular cone (6), elliptic paraboloid (8) and the general quadric with its
 // affine type (its degrees of freedom, 6 to 9) — unless it has two parts with vertices on
 // both, or is a pair of planes (one of them is the plane candidate). The chosen one
-// minimises n ln(MSE + floor² + tolerance²) + k ln(n), n the number of vertices, the
+// minimises n ln(MSE + floor² + stored² + tolerance²) + k ln(n), n the number of vertices, the
 // tolerance the samples' own (region_samples: the tessellation's chordal deviation, below
-// which a closer fit is no evidence). With a type imposed, the best candidate of that type
+// which a closer fit is no evidence). The edges' midpoints (Samples::edge_midpoints) say
+// where the surface runs between the vertices: among candidates exact to the floor, they
+// break the tie; otherwise a candidate ten times farther from them than another, beyond
+// the tessellation's deviation, is dropped (a strip's two rows of vertices lie on many
+// quadrics; docs/METHOD.md §6). With a type imposed, the best candidate of that type
 // is chosen; std::invalid_argument when none could be fitted (a sphere through a flat
 // region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});

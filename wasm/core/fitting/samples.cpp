@@ -37,6 +37,7 @@ Samples region_samples(const Model& model, const std::vector<int>& faces) {
             const std::array<int, 2> edge = shared_edge(model, f, h);
             if (edge[0] >= 0) out.edge_midpoints.push_back(0.5 * (model.points[edge[0]] + model.points[edge[1]]));
         }
+        out.midpoint_tolerances.resize(out.edge_midpoints.size(), largest);
         deviation.push_back(largest);
     }
     if (deviation.empty()) return out;

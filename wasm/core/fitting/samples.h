@@ -22,6 +22,9 @@ struct Samples {
     // Midpoints of edges between the faces (region_samples: those of at most a thousand
     // faces): a surface holds the edges a tessellation laid along its straight lines.
     std::vector<Vec3> edge_midpoints;
+    // Per midpoint, the chordal deviation of the face it was taken from (its largest
+    // sagitta): how far the midpoint may lie from the surface the vertices are on.
+    std::vector<double> midpoint_tolerances;
     void add(const Vec3& p, double w) {
         points.push_back(p);
         weights.push_back(w);

@@ -11,6 +11,11 @@
 
 namespace vqsa {
 
+// How far (RMS, in the unit frame: relative to the longest bounding-box side) a
+// tessellation's vertices may lie off its surfaces and count as on them: what a mesh file's
+// six or seven significant digits keep. Noise, however small it is, moves them farther.
+constexpr double kStoredPrecision = 1e-6;
+
 // Faces are adjacent when they share an edge (every pair around a non-manifold edge).
 struct DualGraph {
     std::vector<int> start;         // neighbours of face f: neighbor[start[f] .. start[f+1])

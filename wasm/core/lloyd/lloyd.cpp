@@ -16,11 +16,6 @@ namespace vqsa {
 
 namespace {
 
-// How far (RMS, relative to the longest bounding-box side) a tessellation's vertices may lie
-// off its surfaces and count as on them: what a mesh file's six or seven significant digits
-// keep. Noise, however small it is, moves them farther.
-constexpr double kStoredPrecision = 1e-6;
-
 // The quadric through the vertices of a few hundred of the faces, evenly strided: a cheap
 // first look at whether all of them lie on one.
 Fit fit_some_vertices(const Model& model, const std::vector<int>& faces) {
