@@ -228,3 +228,21 @@ TEST(ModelSelection, ABandOneFacetAcrossIsTheSurfaceItsEdgesLieOn) {
         EXPECT_STREQ(type_name(strip.chosen.type), "plane");
     }
 }
+
+// Eight vertices lie on a quadric of nine parameters whatever surface they sample: for a
+// handful of noisy faces that fit is no evidence, and a type of fewer parameters is chosen.
+TEST(ModelSelection, AQuadricNeedsMoreVerticesThanParameters) {
+    std::mt19937 rng(23);
+    std::normal_distribution<double> gauss(0, 1);
+    for (int trial = 0; trial < 10; ++trial) {
+        Shape shape = make_grid([&](double u, double v) { return Vec3(u, v, 0.01 * gauss(rng)); }, 0, 0.3, 0, 0.1, 3, 1);
+        transform(shape.mesh, test::random_rotation(rng), Vec3(0.2, 0.5, -0.3));
+        const Model model = make_model(shape.mesh);
+        std::vector<int> faces(model.face_count());
+        std::iota(faces.begin(), faces.end(), 0);
+        const Samples s = region_samples(model, faces);
+        ASSERT_EQ(s.points.size(), 8u);
+        const ModelChoice choice = select_model(s, fit_region(moments_of(model, faces)).quadric);
+        EXPECT_LT(choice.chosen.parameters, 8) << type_name(choice.chosen.type);
+    }
+}

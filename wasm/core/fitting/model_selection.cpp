@@ -144,6 +144,11 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         if (usable && std::isfinite(g.rms)) candidates.push_back(g);
     }
 
+    // A candidate of as many parameters as there are vertices passes through them whatever
+    // the surface: its fit is no evidence (a 6-face region's 8 vertices lie on a quadric).
+    const auto undetermined = [&](const TypedFit& c) { return static_cast<std::size_t>(c.parameters) >= s.points.size(); };
+    if (!std::all_of(candidates.begin(), candidates.end(), undetermined))
+        candidates.erase(std::remove_if(candidates.begin(), candidates.end(), undetermined), candidates.end());
     const double n = static_cast<double>(s.points.size());
     const double exact2 = (options.floor * radius) * (options.floor * radius) + options.stored * options.stored;
     const double floor2 = exact2 + s.tolerance * s.tolerance;
