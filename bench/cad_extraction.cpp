@@ -103,15 +103,15 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
     if (!dump_dir.empty()) std::ofstream(dump_dir + "/" + name + ".glb", std::ios::binary) << vqsa::export_glb(part.mesh, r);
     if (verbose) {
         std::fprintf(stderr, "%s: %d proxies, stopped %s, accuracy %.4f\n", name.c_str(), o.proxies, o.stop.c_str(), o.accuracy);
+        // Where each region's faces come from: true face (triangles), the largest first.
+        std::vector<std::map<int, int>> from(r.proxies.size());
+        for (std::size_t t = 0; t < r.face_labels.size(); ++t)
+            if (r.face_labels[t] >= 0) ++from[r.face_labels[t]][part.face[t]];
         for (const vqsa::ProxyResult& p : r.proxies) {
             const int face = score.face_of[p.id];
             std::fprintf(stderr, "  %2d %-22s faces %5d area %.4f rms %.2e  -> true %d %s", p.id, vqsa::type_name(p.type),
                          p.faces, p.area, p.rms_error, face, face >= 0 ? vqsa::type_name(part.surfaces[face].type) : "-");
-            // Where the region's faces come from: true face (triangles), the largest first.
-            std::map<int, int> from;
-            for (std::size_t t = 0; t < r.face_labels.size(); ++t)
-                if (r.face_labels[t] == p.id) ++from[part.face[t]];
-            std::vector<std::pair<int, int>> sources(from.begin(), from.end());
+            std::vector<std::pair<int, int>> sources(from[p.id].begin(), from[p.id].end());
             std::sort(sources.begin(), sources.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
             for (const auto& [f, n] : sources) std::fprintf(stderr, " %d:%d", f, n);
             std::fprintf(stderr, "\n");
