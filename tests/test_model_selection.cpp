@@ -99,6 +99,31 @@ TEST(ModelSelection, NoiseDoesNotAddParameters) {
     }
 }
 
+TEST(ModelSelection, AnImposedTypeWithoutRivalsIsTheSameFit) {
+    // Local Lloyd iterations refit an imposed type at every step and read no runner-up:
+    // without the other types' fits, the same surface (noisy patches, every imposable type).
+    std::mt19937 rng(29);
+    const std::pair<QuadricType, ImposedType> imposable[] = {{QuadricType::plane, ImposedType::plane},
+                                                             {QuadricType::sphere, ImposedType::sphere},
+                                                             {QuadricType::cylinder, ImposedType::cylinder},
+                                                             {QuadricType::cone, ImposedType::cone}};
+    for (const test::Surface& surface : test::surfaces())
+        for (const auto& [type, imposed] : imposable) {
+            if (surface.type != type) continue;
+            SCOPED_TRACE(surface.name);
+            const Patch patch = mesh_patch(surface, test::random_rotation(rng), Vec3(0.5, 1, -1), 0.002, 2, rng);
+            ModelSelectionOptions options;
+            options.imposed = imposed;
+            const ModelChoice with = select_model(patch.vertices, patch.general, options);
+            options.rivals = false;
+            const ModelChoice without = select_model(patch.vertices, patch.general, options);
+            EXPECT_EQ(without.chosen.type, type);
+            EXPECT_EQ(without.chosen.quadric.c, with.chosen.quadric.c);
+            EXPECT_FALSE(without.runner_up.has_value());
+            if (type != QuadricType::plane) EXPECT_TRUE(with.runner_up.has_value());
+        }
+}
+
 TEST(ModelSelection, CleanParametersAreExact) {
     std::mt19937 rng(23);
     for (const test::Surface& surface : test::surfaces()) {

@@ -106,9 +106,13 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         candidates.push_back({fit->shape.type, fit->quadric, fit->shape, taubin_rms(s, fit->quadric),
                               degrees_of_freedom(fit->shape.type), true});
     };
-    add_special(fit_plane_geometric(s));
+    // Without rivals, only the imposed type's fit.
+    const auto wanted = [&](ImposedType type) {
+        return options.rivals || options.imposed == ImposedType::none || options.imposed == type;
+    };
+    if (wanted(ImposedType::plane)) add_special(fit_plane_geometric(s));
     if (s.points.size() >= 6 && (!general.is_plane() || options.imposed != ImposedType::none)) {
-        add_special(fit_sphere_geometric(s));
+        if (wanted(ImposedType::sphere)) add_special(fit_sphere_geometric(s));
         // Axis guesses from the general quadric: the eigenvector of A with the smallest
         // |eigenvalue| (cylinder), the one whose eigenvalue's sign stands alone (cone),
         // the one along which the quadric is linear (paraboloid).
@@ -117,21 +121,22 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         int flattest = 0;
         for (int i = 1; i < 3; ++i)
             if (std::abs(lambda[i]) < std::abs(lambda[flattest])) flattest = i;
-        add_special(fit_cylinder_geometric(s, eig.eigenvectors().col(flattest)));
+        if (wanted(ImposedType::cylinder)) add_special(fit_cylinder_geometric(s, eig.eigenvectors().col(flattest)));
         const int positives = (lambda.array() > 0).count();
-        if (positives == 1 || positives == 2) {
+        if (wanted(ImposedType::cone) && (positives == 1 || positives == 2)) {
             int lone = 0;
             for (int i = 0; i < 3; ++i)
                 if ((lambda[i] > 0) == (positives == 1)) lone = i;
             const Eigen::FullPivLU<Eigen::Matrix3d> lu(general.A());
             if (lu.isInvertible()) add_special(fit_cone_geometric(s, eig.eigenvectors().col(lone), lu.solve(-0.5 * general.b())));
         }
-        add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)));
+        if (wanted(ImposedType::none)) add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)));
     }
     // The region's quadric was fitted to its triangles, which a CAD tessellation lays
     // inside curved surfaces; the special fits see the vertices. Both general quadrics
     // compete, each as its affine type.
     for (const Quadric& q : {general, fit_taubin(moments_of(s)).quadric}) {
+        if (!wanted(ImposedType::quadric)) break;
         TypedFit g;
         g.quadric = normalized(q);
         g.shape = classify(q, center, radius, options.classify);

@@ -47,6 +47,8 @@ struct ModelSelectionOptions {
     ClassifyOptions classify;
     // The candidate of this type wins whatever the criterion says (if its fit exists).
     ImposedType imposed = ImposedType::none;
+    // With a type imposed, whether the other types are fitted too (for the runner-up).
+    bool rivals = true;
 };
 
 // `vertices`: each vertex of the region once (the vertices of a CAD tessellation lie on

@@ -27,6 +27,7 @@ void LocalLloyd::refit() {
         if (imposed_[labels_[f]] != ImposedType::none) faces[labels_[f]].push_back(f);
     ModelSelectionOptions selection;
     selection.classify = options_.classify;
+    selection.rivals = false;
     for (std::size_t i = 0; i < proxies_.size(); ++i) {
         if (!active_[i] || imposed_[i] == ImposedType::none) continue;
         selection.imposed = imposed_[i];
@@ -58,7 +59,8 @@ bool LocalLloyd::step() {
     labels_.swap(flooded_);
     refit();
     const double before = energy_;
-    energy_ = evaluate_regions(model_, labels_, proxies_, errors_, face_errors_);
+    // The other regions kept their faces and quadrics: their errors stand.
+    energy_ = evaluate_regions(model_, labels_, proxies_, errors_, face_errors_, &active_);
     ++iterations_;
     settled_ = !(before - energy_ > options_.convergence * before);
     return !settled_ && iterations_ < max_iterations_;

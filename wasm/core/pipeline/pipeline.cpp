@@ -69,6 +69,7 @@ public:
         state_.energy = lloyd_->energy();
         state_.settled = lloyd_->settled();
         if (options_.init == Initialization::features) state_.crease = lloyd_->features().crease;
+        state_.roughness = std::make_shared<const std::vector<double>>(lloyd_->features().roughness);
         lloyd_.reset();  // a finished stage's working memory goes (on large meshes, hundreds of MB)
         return false;
     }
@@ -182,7 +183,7 @@ public:
         : model_(model), options_(options), state_(state), regions_(std::move(regions)) {
         // One selection for every region and for the seams between them.
         seams_.selection.classify = options.lloyd.classify;
-        seams_.fit = options.lloyd.fit;
+        seams_.lloyd = options.lloyd;
     }
     Stage id() const override { return Stage::refit; }
     double fraction() const override {
@@ -228,8 +229,8 @@ public:
             may_change_.assign(count, 1);
             for (int r = 0; r < count; ++r) may_change_[r] = refitted(r) && imposed(r) == ImposedType::none;
             simplifier_ = std::make_unique<SeamSimplifier>(model_, state_.labels, state_.proxies, state_.choices,
-                                                           state_.crease.empty() ? nullptr : &state_.crease, seams_,
-                                                           &may_change_);
+                                                           state_.crease.empty() ? nullptr : &state_.crease,
+                                                           state_.roughness.get(), seams_, &may_change_);
         }
         if (simplifier_->step()) return true;
         simplifier_.reset();

@@ -87,6 +87,8 @@ public:
         std::vector<Proxy> proxies;
         std::vector<ModelChoice> choices;  // per region, unit frame (empty without refit)
         std::vector<char> crease;  // per dual-graph link, when the Lloyd stage used features
+        // Per face, Features::roughness (the noise): the mesh's, shared by the undo states.
+        std::shared_ptr<const std::vector<double>> roughness;
         double energy = 0;
         StopReason stop_reason = StopReason::none;
         int iterations = 0;

@@ -4,6 +4,7 @@
 #include "fitting/least_squares.h"
 
 #include <algorithm>
+#include <optional>
 #include <set>
 
 namespace vqsa {
@@ -13,12 +14,28 @@ struct SeamSimplifier::Region {
     double error = 0;  // Σ d(t, P) under its chosen surface
 };
 
+struct SeamSimplifier::HandOver {
+    int region[2];  // the plane's, the other's
+    std::vector<int> faces[2];
+    Moments moments[2];
+    ModelChoice choice[2];
+    int parameters = 0;
+    double error = 0;
+    bool better_than(const HandOver& o) const {
+        return parameters != o.parameters ? parameters < o.parameters : error < o.error;
+    }
+};
+
 SeamSimplifier::SeamSimplifier(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
                                std::vector<ModelChoice>& choices, const std::vector<char>* crease,
-                               const SeamOptions& options, const std::vector<char>* may_change)
-    : model_(model), labels_(labels), proxies_(proxies), choices_(choices), crease_(crease), may_change_(may_change),
+                               const std::vector<double>* roughness, const SeamOptions& options,
+                               const std::vector<char>* may_change)
+    : model_(model), labels_(labels), proxies_(proxies), choices_(choices), crease_(crease), roughness_(roughness),
+      may_change_(may_change),
       options_(options),
-      regions_(proxies.size()), in_strip_(model.face_count(), 0), vertex_kept_(model.points.size(), 0) {
+      regions_(proxies.size()), in_strip_(model.face_count(), 0), vertex_kept_(model.points.size(), 0),
+      depth_(model.face_count(), -1) {
+    for (int r = 0; r < static_cast<int>(proxies.size()); ++r) queue_.push_back(r);
     evaluator_.reset(model, quadrics_of(proxies));
     for (int f = 0; f < model.face_count(); ++f) {
         regions_[labels[f]].faces.push_back(f);
@@ -29,12 +46,12 @@ SeamSimplifier::SeamSimplifier(const Model& model, std::vector<int>& labels, std
 SeamSimplifier::~SeamSimplifier() = default;
 
 bool SeamSimplifier::step() {
-    if (next_ >= static_cast<int>(regions_.size())) return false;
-    simplify(next_++);
-    return next_ < static_cast<int>(regions_.size());
+    if (next_ >= queue_.size()) return false;
+    simplify(queue_[next_++]);
+    return next_ < queue_.size();
 }
 
-double SeamSimplifier::fraction() const { return regions_.empty() ? 1 : double(next_) / regions_.size(); }
+double SeamSimplifier::fraction() const { return queue_.empty() ? 1 : double(next_) / queue_.size(); }
 
 void SeamSimplifier::simplify(int a) {
     const DualGraph& g = model_.graph;
@@ -52,7 +69,7 @@ void SeamSimplifier::simplify(int a) {
     // most seams of a free-form surface change no type, and this tells them cheaply.
     auto screen = [&](const std::vector<int>& rest) {
         return select_model(thinned(region_samples(model_, rest), options_.screening_samples),
-                            fit_region(moments_of(model_, rest), options_.fit).quadric, options_.selection);
+                            fit_region(moments_of(model_, rest), options_.lloyd.fit).quadric, options_.selection);
     };
     // Whether every vertex of the strip is also one of `rest`.
     auto keeps_every_vertex = [&](const std::vector<int>& rest, const std::vector<int>& strip) {
@@ -65,7 +82,6 @@ void SeamSimplifier::simplify(int a) {
             for (int v : model_.triangles[f]) vertex_kept_[v] = 0;
         return all;
     };
-    auto may_change = [&](int r) { return !may_change_ || (*may_change_)[r]; };
     if (choices_[a].chosen.parameters <= plane_parameters || !may_change(a)) return;
     std::set<int> neighbours;
     for (int f : regions_[a].faces)
@@ -118,36 +134,161 @@ void SeamSimplifier::simplify(int a) {
         if (rest.size() < 3) continue;
         const Moments rest_moments = moments_of(model_, rest);
         const ModelChoice simpler =
-            select_model(region_samples(model_, rest), fit_region(rest_moments, options_.fit).quadric, options_.selection);
+            select_model(region_samples(model_, rest), fit_region(rest_moments, options_.lloyd.fit).quadric, options_.selection);
         if (simpler.chosen.parameters >= choices_[a].chosen.parameters) continue;
         std::vector<int> grown = regions_[b].faces;
         grown.insert(grown.end(), strip.begin(), strip.end());
         Moments grown_moments = proxies_[b].moments;
         for (int f : strip) add_to(grown_moments, model_.moments[f]);
         const ModelChoice kept =
-            select_model(region_samples(model_, grown), fit_region(grown_moments, options_.fit).quadric, options_.selection);
+            select_model(region_samples(model_, grown), fit_region(grown_moments, options_.lloyd.fit).quadric, options_.selection);
         if (kept.chosen.type != choices_[b].chosen.type) continue;
 
         for (int f : strip) labels_[f] = b;
-        auto commit = [&](int r, std::vector<int> faces, const Moments& m, const ModelChoice& choice) {
-            Proxy& p = proxies_[r];
-            p.moments = m;
-            p.area = m[0];
-            p.faces = static_cast<int>(faces.size());
-            p.quadric = choice.chosen.quadric;
-            choices_[r] = choice;
-            regions_[r].faces = std::move(faces);
-        };
         commit(a, std::move(rest), rest_moments, simpler);
         commit(b, std::move(grown), grown_moments, kept);
         evaluator_.reset(model_, quadrics_of(proxies_));
-        for (int r : {a, b}) {
-            regions_[r].error = 0;
-            for (int f : regions_[r].faces) regions_[r].error += evaluator_(f, r);
-        }
+        measure(a), measure(b);
         // a changed: its other seams are judged anew, if it is still not a plane.
-        if (choices_[a].chosen.parameters <= plane_parameters) break;
+        if (choices_[a].chosen.parameters <= plane_parameters) return;
     }
+    // Both ways: a's half fillet may lie on a plane within the noise as well.
+    for (int b : neighbours) {
+        std::optional<HandOver> best = hand_over(a, b);
+        if (std::optional<HandOver> back = hand_over(b, a); back && (!best || back->better_than(*best))) best = back;
+        if (!best) continue;
+        for (int i : {0, 1}) {
+            for (int f : best->faces[i]) labels_[f] = best->region[i];
+            commit(best->region[i], std::move(best->faces[i]), best->moments[i], best->choice[i]);
+        }
+        evaluator_.reset(model_, quadrics_of(proxies_));
+        measure(a), measure(b);
+        // The other region's seams are judged anew (each hand-over takes parameters away:
+        // this ends).
+        queue_.push_back(b);
+        if (choices_[a].chosen.parameters <= plane_parameters) return;
+    }
+}
+
+
+void SeamSimplifier::commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice) {
+    Proxy& p = proxies_[r];
+    p.moments = moments;
+    p.area = moments[0];
+    p.faces = static_cast<int>(faces.size());
+    p.quadric = choice.chosen.quadric;
+    choices_[r] = choice;
+    regions_[r].faces = std::move(faces);
+}
+
+bool SeamSimplifier::may_change(int r) const { return !may_change_ || (*may_change_)[r]; }
+
+double SeamSimplifier::noise_energy(const std::vector<int>& faces) const {
+    double noise = 0;
+    for (int f : faces) noise += model_.areas[f] * (*roughness_)[f] * (*roughness_)[f];
+    return options_.lloyd.noise_factor * options_.lloyd.noise_factor * noise;
+}
+
+void SeamSimplifier::measure(int r) {
+    regions_[r].error = 0;
+    for (int f : regions_[r].faces) regions_[r].error += evaluator_(f, r);
+}
+
+std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) {
+    const DualGraph& g = model_.graph;
+    auto link_open = [&](int e) { return !crease_ || !(*crease_)[e]; };
+    if (!roughness_ || !may_change(a) || !may_change(b) || choices_[a].chosen.parameters <= degrees_of_freedom(QuadricType::plane) ||
+        !(regions_[a].error <= noise_energy(regions_[a].faces)))
+        return std::nullopt;
+    // a's faces by their distance from b, in face rings across open links; the ones no
+    // ring reaches (behind creases) count as farthest.
+    std::vector<int> order;
+    for (int f : regions_[a].faces)
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            if (labels_[g.neighbor[e]] == b && link_open(e)) {
+                depth_[f] = 0, order.push_back(f);
+                break;
+            }
+    if (order.empty()) return std::nullopt;
+    for (std::size_t k = 0; k < order.size(); ++k)
+        for (int e = g.begin(order[k]); e < g.end(order[k]); ++e) {
+            const int h = g.neighbor[e];
+            if (labels_[h] == a && depth_[h] < 0 && link_open(e)) depth_[h] = depth_[order[k]] + 1, order.push_back(h);
+        }
+    for (int f : regions_[a].faces)
+        if (depth_[f] < 0) order.push_back(f);
+    for (int f : order) depth_[f] = -1;
+    // The farther half, by area.
+    std::vector<int> far, near;
+    double far_area = 0;
+    for (auto f = order.rbegin(); f != order.rend(); ++f)
+        if (far_area < 0.5 * proxies_[a].area) far.push_back(*f), far_area += model_.areas[*f];
+        else near.push_back(*f);
+    if (static_cast<int>(far.size()) < options_.lloyd.min_quadric_faces || near.empty()) return std::nullopt;
+    const Fit plane = fit_plane(moments_of(model_, far));
+    if (!(plane.mean_squared * far_area <= noise_energy(far))) return std::nullopt;
+
+    // The near half goes to b, a is the plane, and local Lloyd settles where the plane ends;
+    // b free, then b as each type of fewer parameters than the best result has given it.
+    const std::vector<int> before_a = regions_[a].faces, before_b = regions_[b].faces;
+    const std::vector<Proxy> saved = proxies_;  // local Lloyd re-evaluates every region
+    const int parameters_before = choices_[a].chosen.parameters + choices_[b].chosen.parameters;
+    const double error_before = regions_[a].error + regions_[b].error;
+    std::optional<HandOver> best;
+    auto restore = [&] {
+        for (int f : before_a) labels_[f] = a;
+        for (int f : before_b) labels_[f] = b;
+        proxies_ = saved;
+    };
+    const std::pair<ImposedType, int> types[] = {{ImposedType::none, 0},
+                                                 {ImposedType::sphere, degrees_of_freedom(QuadricType::sphere)},
+                                                 {ImposedType::cylinder, degrees_of_freedom(QuadricType::cylinder)},
+                                                 {ImposedType::cone, degrees_of_freedom(QuadricType::cone)}};
+    for (const auto& [type, parameters] : types) {
+        if (type != ImposedType::none && (!best || parameters >= best->choice[1].chosen.parameters)) continue;
+        for (int f : near) labels_[f] = b;
+        std::vector<char> active(proxies_.size(), 0);
+        active[a] = active[b] = 1;
+        std::vector<ImposedType> imposed(proxies_.size(), ImposedType::none);
+        imposed[a] = ImposedType::plane, imposed[b] = type;
+        {
+            LocalLloyd local(model_, options_.lloyd, labels_, proxies_, std::move(active), std::move(imposed), crease_,
+                             options_.hand_over_iterations);
+            while (local.step()) {
+            }
+        }
+        HandOver t{{a, b}};
+        for (const std::vector<int>* region : {&before_a, &before_b})
+            for (int f : *region) t.faces[labels_[f] == a ? 0 : 1].push_back(f);
+        restore();
+        if (t.faces[0].size() < 3 || t.faces[1].size() < 3) continue;
+        // Each region's type is the data's choice, or the imposed one where that has fewer
+        // parameters: the pair is judged as a whole, below.
+        const std::pair<ImposedType, int> imposed_on[2] = {{ImposedType::plane, degrees_of_freedom(QuadricType::plane)},
+                                                           {type, parameters}};
+        for (int i : {0, 1}) {
+            t.moments[i] = moments_of(model_, t.faces[i]);
+            const Samples samples = region_samples(model_, t.faces[i]);
+            const Quadric general = fit_region(t.moments[i], options_.lloyd.fit).quadric;
+            t.choice[i] = select_model(samples, general, options_.selection);
+            if (imposed_on[i].first == ImposedType::none || t.choice[i].chosen.parameters <= imposed_on[i].second)
+                continue;
+            ModelSelectionOptions selection = options_.selection;
+            selection.imposed = imposed_on[i].first;
+            try {
+                t.choice[i] = select_model(samples, general, selection);
+            } catch (const std::invalid_argument&) {  // no such fit: the data's choice stands
+            }
+        }
+        t.parameters = t.choice[0].chosen.parameters + t.choice[1].chosen.parameters;
+        FaceErrors after;
+        after.reset(model_, {t.choice[0].chosen.quadric, t.choice[1].chosen.quadric});
+        for (int i : {0, 1})
+            for (int f : t.faces[i]) t.error += after(f, i);
+        if (t.parameters >= parameters_before || !(t.error <= error_before)) continue;
+        if (!best || t.better_than(*best)) best = std::move(t);
+    }
+    return best;
 }
 
 }  // namespace vqsa

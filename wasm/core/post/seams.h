@@ -7,7 +7,9 @@
 #include "fitting/model_selection.h"
 #include "geometry/model.h"
 #include "lloyd/lloyd.h"
+#include "lloyd/local_lloyd.h"
 
+#include <optional>
 #include <vector>
 
 namespace vqsa {
@@ -23,7 +25,9 @@ struct SeamOptions {
     // Vertices a first, cheap model selection sees (see seams.cpp).
     std::size_t screening_samples = 400;
     ModelSelectionOptions selection;
-    FitOptions fit;
+    // The fits, and the hand-over's local Lloyd iterations.
+    LloydOptions lloyd;
+    int hand_over_iterations = 4;
 };
 
 // Where a facet strip beside a tangent seam (a plane next to a fillet, a slot's wall next
@@ -32,15 +36,23 @@ struct SeamOptions {
 // the distances cannot tell. Each region not of the simplest type gives each neighbour
 // (across non-crease edges) the faces next to it that the neighbour's surface explains,
 // when without them it selects a type of fewer parameters and the neighbour keeps its
-// type: the same fit, fewer parameters. `choices` (from select_model, per region) and
+// type: the same fit, fewer parameters.
+// A region may also bend over a plane and part of the curved face beside it, its neighbour
+// holding the rest of that face (a plane, half a fillet) while the noise hides the bend:
+// when the region is explained by its noise and the half of it farthest from the neighbour
+// lies on a plane within that half's noise, the pair is partitioned again by local Lloyd
+// iterations with that plane imposed (the hand-over), and the result is kept when it needs
+// fewer parameters in all and leaves no more error. `choices` (from select_model, per region) and
 // `proxies` (quadric, moments, faces, area) are updated for the regions that change.
 // One region per step; the arrays must outlive the simplifier.
 class SeamSimplifier {
 public:
-    // `crease`: per dual-graph link, optional; `may_change` (per region, optional): the
-    // regions that may give or take faces (all when null).
+    // `crease`: per dual-graph link, optional; `roughness`: per face (Features::roughness),
+    // optional (no hand-over without it); `may_change` (per region, optional): the regions
+    // that may give or take faces (all when null).
     SeamSimplifier(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
-                   std::vector<ModelChoice>& choices, const std::vector<char>* crease, const SeamOptions& options,
+                   std::vector<ModelChoice>& choices, const std::vector<char>* crease,
+                   const std::vector<double>* roughness, const SeamOptions& options,
                    const std::vector<char>* may_change = nullptr);
     ~SeamSimplifier();
     bool step();  // false once every region is done
@@ -48,6 +60,17 @@ public:
 
 private:
     void simplify(int a);
+    // The best hand-over from region a to its neighbour b, if one pays (the partition is
+    // left as it was).
+    struct HandOver;
+    std::optional<HandOver> hand_over(int a, int b);
+    // Region r becomes these faces, of these moments, typed as `choice` says.
+    void commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice);
+    void measure(int r);  // regions_[r].error from evaluator_
+    bool may_change(int r) const;
+    // Σ A (noise_factor · roughness)² over the faces: the error their noise explains, as
+    // the Lloyd stage counts it (Lloyd::noise_energy).
+    double noise_energy(const std::vector<int>& faces) const;
 
     struct Region;
     const Model& model_;
@@ -55,13 +78,16 @@ private:
     std::vector<Proxy>& proxies_;
     std::vector<ModelChoice>& choices_;
     const std::vector<char>* crease_;
+    const std::vector<double>* roughness_;
     const std::vector<char>* may_change_;
     SeamOptions options_;
     FaceErrors evaluator_;
     std::vector<Region> regions_;
     std::vector<char> in_strip_;     // scratch, per face
     std::vector<char> vertex_kept_;  // scratch, per vertex
-    int next_ = 0;
+    std::vector<int> depth_;         // scratch, per face (-1: unreached)
+    std::vector<int> queue_;  // regions to simplify, in turn; a hand-over's b again
+    std::size_t next_ = 0;
 };
 
 }  // namespace vqsa
