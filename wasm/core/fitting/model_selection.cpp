@@ -106,10 +106,9 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         candidates.push_back({fit->shape.type, fit->quadric, fit->shape, taubin_rms(s, fit->quadric),
                               degrees_of_freedom(fit->shape.type), true});
     };
-    // Without rivals, only the imposed type's fit.
-    const auto wanted = [&](ImposedType type) {
-        return options.rivals || options.imposed == ImposedType::none || options.imposed == type;
-    };
+    // Every type's fit, or, without rivals, only the imposed type's.
+    const bool every_type = options.rivals || options.imposed == ImposedType::none;
+    const auto wanted = [&](ImposedType type) { return every_type || options.imposed == type; };
     if (wanted(ImposedType::plane)) add_special(fit_plane_geometric(s));
     if (s.points.size() >= 6 && (!general.is_plane() || options.imposed != ImposedType::none)) {
         if (wanted(ImposedType::sphere)) add_special(fit_sphere_geometric(s));
@@ -130,24 +129,24 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
             const Eigen::FullPivLU<Eigen::Matrix3d> lu(general.A());
             if (lu.isInvertible()) add_special(fit_cone_geometric(s, eig.eigenvectors().col(lone), lu.solve(-0.5 * general.b())));
         }
-        if (wanted(ImposedType::none)) add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)));
+        if (every_type) add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)));  // never imposed
     }
     // The region's quadric was fitted to its triangles, which a CAD tessellation lays
     // inside curved surfaces; the special fits see the vertices. Both general quadrics
     // compete, each as its affine type.
-    for (const Quadric& q : {general, fit_taubin(moments_of(s)).quadric}) {
-        if (!wanted(ImposedType::quadric)) break;
-        TypedFit g;
-        g.quadric = normalized(q);
-        g.shape = classify(q, center, radius, options.classify);
-        g.type = q.is_plane() ? QuadricType::plane : g.shape.type;
-        g.rms = taubin_rms(s, q);
-        g.parameters = degrees_of_freedom(g.type);
-        const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
-        const bool usable = g.type != QuadricType::empty && !pair &&
-                            !(has_two_parts(g.type) && on_two_parts(g.shape, s, 2 * g.rms));
-        if (usable && std::isfinite(g.rms)) candidates.push_back(g);
-    }
+    if (wanted(ImposedType::quadric))
+        for (const Quadric& q : {general, fit_taubin(moments_of(s)).quadric}) {
+            TypedFit g;
+            g.quadric = normalized(q);
+            g.shape = classify(q, center, radius, options.classify);
+            g.type = q.is_plane() ? QuadricType::plane : g.shape.type;
+            g.rms = taubin_rms(s, q);
+            g.parameters = degrees_of_freedom(g.type);
+            const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
+            const bool usable = g.type != QuadricType::empty && !pair &&
+                                !(has_two_parts(g.type) && on_two_parts(g.shape, s, 2 * g.rms));
+            if (usable && std::isfinite(g.rms)) candidates.push_back(g);
+        }
 
     // A candidate of as many parameters as there are vertices passes through them whatever
     // the surface: its fit is no evidence (a 6-face region's 8 vertices lie on a quadric).

@@ -170,7 +170,6 @@ void SeamSimplifier::simplify(int a) {
     }
 }
 
-
 void SeamSimplifier::commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice) {
     Proxy& p = proxies_[r];
     p.moments = moments;
@@ -257,7 +256,8 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
             while (local.step()) {
             }
         }
-        HandOver t{{a, b}};
+        HandOver t;
+        t.region[0] = a, t.region[1] = b;
         for (const std::vector<int>* region : {&before_a, &before_b})
             for (int f : *region) t.faces[labels_[f] == a ? 0 : 1].push_back(f);
         restore();
