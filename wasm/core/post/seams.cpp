@@ -262,19 +262,18 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
             for (int f : *region) t.faces[labels_[f] == a ? 0 : 1].push_back(f);
         restore();
         if (t.faces[0].size() < 3 || t.faces[1].size() < 3) continue;
-        // Each region's type is the data's choice, or the imposed one where that has fewer
-        // parameters: the pair is judged as a whole, below.
-        const std::pair<ImposedType, int> imposed_on[2] = {{ImposedType::plane, degrees_of_freedom(QuadricType::plane)},
-                                                           {type, parameters}};
+        // a is the plane (no type has fewer parameters, so the data's choice would be the
+        // plane or give way to it); b is the data's choice, or the imposed type where that has
+        // fewer parameters: the pair is judged as a whole, below.
         for (int i : {0, 1}) {
             t.moments[i] = moments_of(model_, t.faces[i]);
             const Samples samples = region_samples(model_, t.faces[i]);
             const Quadric general = fit_region(t.moments[i], options_.lloyd.fit).quadric;
-            t.choice[i] = select_model(samples, general, options_.selection);
-            if (imposed_on[i].first == ImposedType::none || t.choice[i].chosen.parameters <= imposed_on[i].second)
-                continue;
             ModelSelectionOptions selection = options_.selection;
-            selection.imposed = imposed_on[i].first;
+            if (i == 0) selection.imposed = ImposedType::plane, selection.rivals = false;
+            t.choice[i] = select_model(samples, general, selection);
+            if (i == 0 || type == ImposedType::none || t.choice[i].chosen.parameters <= parameters) continue;
+            selection.imposed = type;
             try {
                 t.choice[i] = select_model(samples, general, selection);
             } catch (const std::invalid_argument&) {  // no such fit: the data's choice stands
@@ -287,6 +286,14 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
             for (int f : t.faces[i]) t.error += after(f, i);
         if (t.parameters >= parameters_before || !(t.error <= error_before)) continue;
         if (!best || t.better_than(*best)) best = std::move(t);
+    }
+    // The trials' plane skips the rivals (every trial would pay for their fits); the one
+    // kept gets them, for the report's runner-up.
+    if (best) {
+        ModelSelectionOptions selection = options_.selection;
+        selection.imposed = ImposedType::plane;
+        best->choice[0] = select_model(region_samples(model_, best->faces[0]),
+                                       fit_region(best->moments[0], options_.lloyd.fit).quadric, selection);
     }
     return best;
 }
