@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include <Eigen/Cholesky>
+
 namespace vqsa {
 
 namespace {
@@ -197,11 +199,14 @@ void find_charts(const DualGraph& g, const std::vector<char>& reliable, Features
         if (out.chart[f] < 0) grow(f, true);  // a component without a reliable face
 }
 
-// Each vertex's roughness — how far it lies, along its normal, from the mean of its
-// neighbours (the umbrella) beyond what its neighbours do: a second difference, so that
-// the smooth curvature of a clean surface cancels and noise remains. A vertex on a crease
-// is measured once per chart, from that chart's faces only: the crease itself is no
-// roughness.
+// Each vertex's roughness: how far it lies, along its normal, from the quadric height
+// field z = ax² + bxy + cy² + dx + ey + f fitted to it and its two rings, the residual
+// divided by √(1 − leverage) so that under noise σ along the normals it has a standard
+// deviation of exactly σ, whatever the tessellation's layout (an umbrella's second
+// difference weighs the vertices by their valences, and a clean irregular tessellation
+// of a curved surface bends it: neither is noise). A clean surface leaves only its terms
+// beyond the quadric. A vertex on a crease is measured once per chart, from that chart's
+// faces only: the crease itself is no roughness.
 struct VertexDeviations {
     std::vector<int> chart, vertex;  // per measurement
     std::vector<double> magnitude;
@@ -220,52 +225,72 @@ VertexDeviations vertex_deviations(const Model& model, const std::vector<Vec3>& 
         const auto [it, added] = crease_slot.try_emplace({v, chart}, static_cast<int>(vn + crease_slot.size()));
         return it->second;
     };
-    std::vector<Vec3> slot_normal(vn), slot_sum(vn);
-    std::vector<int> slot_count(vn, 0);
-    auto grow_to = [&](int k) {
-        if (k >= static_cast<int>(slot_count.size())) {
-            slot_normal.resize(k + 1, Vec3::Zero()), slot_sum.resize(k + 1, Vec3::Zero()), slot_count.resize(k + 1, 0);
-        }
-    };
-    for (Vec3& v : slot_normal) v.setZero();
-    for (Vec3& v : slot_sum) v.setZero();
+    std::vector<Vec3> slot_normal(vn, Vec3::Zero());
+    std::vector<std::vector<int>> ring(vn);  // a slot's neighbouring slots, its chart's faces only
+    std::vector<int> slot_vertex(vn), slot_chart(vn, -1);
+    for (std::size_t v = 0; v < vn; ++v) slot_vertex[v] = static_cast<int>(v);
     for (int f = 0; f < n; ++f) {
         const Triangle& t = model.triangles[f];
         for (int i = 0; i < 3; ++i) {
             const int k = slot(t[i], out.chart[f]);
-            grow_to(k);
+            if (k >= static_cast<int>(slot_normal.size())) {
+                slot_normal.resize(k + 1, Vec3::Zero()), ring.resize(k + 1), slot_vertex.resize(k + 1), slot_chart.resize(k + 1);
+                slot_vertex[k] = t[i];
+            }
+            slot_chart[k] = out.chart[f];
             slot_normal[k] += model.areas[f] * normal[f];
-            // Each edge seen from both ends, once per face: neighbours weighted by their faces.
-            slot_sum[k] += model.points[t[(i + 1) % 3]] + model.points[t[(i + 2) % 3]];
-            slot_count[k] += 2;
+            for (int j : {(i + 1) % 3, (i + 2) % 3}) {
+                const int m = slot(t[j], out.chart[f]);
+                if (std::find(ring[k].begin(), ring[k].end(), m) == ring[k].end()) ring[k].push_back(m);
+            }
         }
-    }
-    const std::size_t slots = slot_count.size();
-    std::vector<int> slot_vertex(slots);
-    for (std::size_t v = 0; v < vn; ++v) slot_vertex[v] = static_cast<int>(v);
-    for (const auto& [key, k] : crease_slot) slot_vertex[k] = key.first;
-    std::vector<double> d(slots, 0.0);  // the signed umbrella deviation
-    for (std::size_t k = 0; k < slots; ++k)
-        if (slot_count[k] > 0 && slot_normal[k].norm() > 0)
-            d[k] = (model.points[slot_vertex[k]] - slot_sum[k] / slot_count[k]).dot(slot_normal[k].normalized());
-    std::vector<double> neighbour_d(slots, 0.0);
-    for (int f = 0; f < n; ++f) {
-        const Triangle& t = model.triangles[f];
-        for (int i = 0; i < 3; ++i)
-            neighbour_d[slot(t[i], out.chart[f])] +=
-                d[slot(t[(i + 1) % 3], out.chart[f])] + d[slot(t[(i + 2) % 3], out.chart[f])];
     }
     VertexDeviations out_deviations;
-    std::vector<char> seen(slots, 0);
-    for (int f = 0; f < n; ++f)
-        for (int v : model.triangles[f]) {
-            const int k = slot(v, out.chart[f]);
-            if (seen[k] || !slot_count[k]) continue;
-            seen[k] = 1;
-            out_deviations.chart.push_back(out.chart[f]);
-            out_deviations.vertex.push_back(v);
-            out_deviations.magnitude.push_back(std::abs(d[k] - neighbour_d[k] / slot_count[k]));
-        }
+    std::vector<int> mark(ring.size(), -1), support;
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+        if (slot_chart[k] < 0 || !(slot_normal[k].norm() > 0)) continue;
+        support.clear();
+        mark[k] = static_cast<int>(k);
+        for (int a : ring[k])
+            if (mark[a] != static_cast<int>(k)) mark[a] = static_cast<int>(k), support.push_back(a);
+        double spacing = 0;  // the nearest ring's mean length: the fit's scale
+        for (int a : support) spacing += (model.points[slot_vertex[a]] - model.points[slot_vertex[k]]).norm();
+        const std::size_t first = support.size();
+        for (std::size_t i = 0; i < first; ++i)
+            for (int b : ring[support[i]])
+                if (mark[b] != static_cast<int>(k)) mark[b] = static_cast<int>(k), support.push_back(b);
+        // More than the six unknowns, with room to tell noise from the fit.
+        if (support.size() < 9 || !(spacing > 0)) continue;
+        spacing /= static_cast<double>(first);
+        const Vec3 z = slot_normal[k].normalized();
+        const Vec3 x = z.unitOrthogonal(), y = z.cross(x);
+        const Vec3& origin = model.points[slot_vertex[k]];
+        Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero();
+        Eigen::Matrix<double, 6, 1> right = Eigen::Matrix<double, 6, 1>::Zero();
+        auto add = [&](const Vec3& p) {
+            const Vec3 d = (p - origin) / spacing;
+            const double u = d.dot(x), v = d.dot(y);
+            Eigen::Matrix<double, 6, 1> row;
+            row << u * u, u * v, v * v, u, v, 1;
+            normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(row);
+            right += row * d.dot(z);
+        };
+        add(origin);
+        for (int a : support) add(model.points[slot_vertex[a]]);
+        const Eigen::Matrix<double, 6, 6> full = normal_matrix.selfadjointView<Eigen::Lower>();
+        const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(full);
+        // Pivots far apart: the support is no surface patch (its points on a line).
+        const auto pivots = solver.vectorD().cwiseAbs();
+        if (solver.info() != Eigen::Success || !(pivots.minCoeff() > 1e-9 * pivots.maxCoeff())) continue;
+        Eigen::Matrix<double, 6, 1> unit = Eigen::Matrix<double, 6, 1>::Zero();
+        unit[5] = 1;
+        const double leverage = solver.solve(unit)[5];  // the centre's row is (0, 0, 0, 0, 0, 1)
+        if (!(leverage < 1)) continue;
+        const double residual = solver.solve(right)[5] * spacing;
+        out_deviations.chart.push_back(slot_chart[k]);
+        out_deviations.vertex.push_back(slot_vertex[k]);
+        out_deviations.magnitude.push_back(std::abs(residual) / std::sqrt(1 - leverage));
+    }
     return out_deviations;
 }
 
@@ -277,10 +302,9 @@ VertexDeviations vertex_deviations(const Model& model, const std::vector<Vec3>& 
 // theirs: it is taken over the others.
 std::vector<double> chart_roughness(const VertexDeviations& deviations, int chart_count,
                                     const std::vector<char>& beside_bend) {
-    // Under noise σ the second difference has a standard deviation of about 1.25 σ
-    // (median of its magnitude 0.674 of that), and a locally exact surface leaves an RMS
-    // of about 0.9 σ.
-    constexpr double kCalibration = 0.9 / (1.25 * 0.674);
+    // Under noise σ a deviation has a standard deviation of σ (median of its magnitude
+    // 0.674 σ), and a locally exact surface leaves an RMS of about 0.9 σ.
+    constexpr double kCalibration = 0.9 / 0.674;
     std::vector<std::vector<double>> magnitudes(chart_count), away(chart_count);
     for (std::size_t i = 0; i < deviations.magnitude.size(); ++i) {
         magnitudes[deviations.chart[i]].push_back(deviations.magnitude[i]);
@@ -429,13 +453,16 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
                         if (v >= 0) on[v] = 1;
                 }
         if (!any) return near;
-        // The umbrella's second difference reaches one ring beyond the bend's vertices.
-        near = on;
-        for (int f = 0; f < n; ++f) {
-            const Triangle& t = model.triangles[f];
-            if (on[t[0]] || on[t[1]] || on[t[2]]) near[t[0]] = near[t[1]] = near[t[2]] = 1;
+        // A vertex's fit reaches two rings beyond it.
+        for (int grown = 0; grown < 2; ++grown) {
+            near = on;
+            for (int f = 0; f < n; ++f) {
+                const Triangle& t = model.triangles[f];
+                if (on[t[0]] || on[t[1]] || on[t[2]]) near[t[0]] = near[t[1]] = near[t[2]] = 1;
+            }
+            on.swap(near);
         }
-        return near;
+        return on;
     };
     const std::vector<char> beside_candidates = beside(candidate);
     if (!beside_candidates.empty()) {

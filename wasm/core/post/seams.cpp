@@ -243,8 +243,14 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
                                                  {ImposedType::sphere, degrees_of_freedom(QuadricType::sphere)},
                                                  {ImposedType::cylinder, degrees_of_freedom(QuadricType::cylinder)},
                                                  {ImposedType::cone, degrees_of_freedom(QuadricType::cone)}};
+    // The imposed types follow a free trial that left no more error than the pair had (b
+    // free fits its faces at least as closely as any imposed type does), each with fewer
+    // parameters than the data chose for b there: whether or not that trial paid in
+    // parameters (b free may bend over a leg as a hyperbolic cylinder, where a cylinder on
+    // the fillet alone costs less).
+    int free_parameters = 0;
     for (const auto& [type, parameters] : types) {
-        if (type != ImposedType::none && (!best || parameters >= best->choice[1].chosen.parameters)) continue;
+        if (type != ImposedType::none && parameters >= free_parameters) continue;
         for (int f : near) labels_[f] = b;
         std::vector<char> active(proxies_.size(), 0);
         active[a] = active[b] = 1;
@@ -284,6 +290,7 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
         after.reset(model_, {t.choice[0].chosen.quadric, t.choice[1].chosen.quadric});
         for (int i : {0, 1})
             for (int f : t.faces[i]) t.error += after(f, i);
+        if (type == ImposedType::none && t.error <= error_before) free_parameters = t.choice[1].chosen.parameters;
         if (t.parameters >= parameters_before || !(t.error <= error_before)) continue;
         if (!best || t.better_than(*best)) best = std::move(t);
     }
