@@ -26,7 +26,7 @@ struct Features {
     std::vector<int> chart;       // per face: its chart, the faces reachable without crossing a crease
     int chart_count = 0;
     // Per face: the RMS distance a locally exact surface would leave on it (the noise),
-    // estimated over its chart from second differences of vertex positions; unit frame.
+    // estimated over its chart from local quadric fits at its vertices; unit frame.
     std::vector<double> roughness;
 };
 

@@ -228,7 +228,7 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
     if (!(plane.mean_squared * far_area <= noise_energy(far))) return std::nullopt;
 
     // The near half goes to b, a is the plane, and local Lloyd settles where the plane ends;
-    // b free, then b as each type of fewer parameters than the best result has given it.
+    // b free, then b as each type of fewer parameters than the free trial gave it (below).
     const std::vector<int> before_a = regions_[a].faces, before_b = regions_[b].faces;
     const std::vector<Proxy> saved = proxies_;  // local Lloyd re-evaluates every region
     const int parameters_before = choices_[a].chosen.parameters + choices_[b].chosen.parameters;
