@@ -165,6 +165,28 @@ TEST(ModelSelection, APlanePairIsNeverChosen) {
     EXPECT_TRUE(choice.chosen.special);
 }
 
+// Lloyd's general quadric of a region on a shallow cone (a dish, a draft) can be nearly two
+// planes (casting.off: eigenvalues −0.65, −8e-5, 0.35): its centre, the cone fit's start,
+// runs off along the near-null direction, and the geometric cone was never fitted. The
+// point of the other directions' centre nearest the samples starts it.
+TEST(ModelSelection, AConeIsFittedWhereTheQuadricsCentreRunsOff) {
+    const double half_angle = 80 * M_PI / 180, slope = 1 / std::tan(half_angle);
+    Samples samples;
+    for (int i = 0; i <= 20; ++i)
+        for (int j = 0; j <= 30; ++j) {
+            const double r = 1 + i / 20.0, theta = 1.2 * j / 30;
+            samples.add(Vec3(r * std::cos(theta), r * std::sin(theta), r * slope), 1);
+        }
+    // Axis z, apex at the origin; the centre 400 units off along y.
+    const Eigen::Matrix3d A = Eigen::Vector3d(-0.65, -8e-5, 0.35).asDiagonal();
+    const ModelChoice choice = select_model(samples, Quadric::from(A, -2 * A * Vec3(0, 400, 0), 0));
+    ASSERT_EQ(choice.chosen.type, QuadricType::cone) << type_name(choice.chosen.type);
+    EXPECT_TRUE(choice.chosen.special);  // the geometric cone fit, not the vertices' Taubin fit typed as one
+    EXPECT_NEAR(choice.chosen.shape.half_angle, half_angle, 1e-6);
+    EXPECT_NEAR(std::abs(choice.chosen.shape.axis().z()), 1, 1e-9);
+    EXPECT_LT(choice.chosen.shape.center.norm(), 1e-6);
+}
+
 // A coarse tessellation stands for its surface only to within its facets' sagitta: a
 // pattern of vertex deviations below that (block.off's holes have their vertices pulled
 // towards the axis by up to the sagitta) is no evidence for a more general quadric, while

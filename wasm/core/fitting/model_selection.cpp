@@ -126,8 +126,23 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
             int lone = 0;
             for (int i = 0; i < 3; ++i)
                 if ((lambda[i] > 0) == (positives == 1)) lone = i;
+            // The start needs a point of the axis: the quadric's centre. Across the axis,
+            // the two other eigenvalues fix it; where one is near zero (an axis ratio above
+            // 10:1: a shallow cone, a dish or a draft, fits as nearly two planes) the centre
+            // runs off along that eigenvector, as far as the fit's rounding puts it, and the
+            // point nearest the samples' centroid is tried as well.
             const Eigen::FullPivLU<Eigen::Matrix3d> lu(general.A());
-            if (lu.isInvertible()) add_special(fit_cone_geometric(s, eig.eigenvectors().col(lone), lu.solve(-0.5 * general.b())));
+            const Vec3 axis = eig.eigenvectors().col(lone);
+            if (lu.isInvertible()) add_special(fit_cone_geometric(s, axis, lu.solve(-0.5 * general.b())));
+            const int u = (lone + 1) % 3, v = (lone + 2) % 3;
+            const int flat = std::abs(lambda[u]) < std::abs(lambda[v]) ? u : v, steep = u + v - flat;
+            if (std::abs(lambda[flat]) < 0.01 * std::abs(lambda[steep])) {
+                // Centre's coordinates along the lone and steep eigenvectors, from the centroid.
+                const Vec3 residual = -0.5 * general.b() - general.A() * center;
+                Vec3 apex = center;
+                for (int k : {lone, steep}) apex += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(residual) / lambda[k]);
+                if (apex.allFinite()) add_special(fit_cone_geometric(s, axis, apex));
+            }
         }
         if (every_type) add_special(fit_paraboloid_geometric(s, eig.eigenvectors().col(flattest)));  // never imposed
     }

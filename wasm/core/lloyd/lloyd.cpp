@@ -573,7 +573,10 @@ std::vector<int> Lloyd::misfit_charts() const {
     // edge) is fitting two faces, however small its error.
     const DualGraph& g = model_.graph;
     const double cos_half = std::cos(0.5 * options_.features.crease_angle * M_PI / 180);
+    // A quadric that turns over several faces instead rounds the crease off, and misses the
+    // crease's vertices (crease_vertices: per chart, its region and vertex on each side).
     std::vector<int> crossings(features_.chart_count, 0), bends(features_.chart_count, 0);
+    std::vector<std::vector<std::pair<int, int>>> crease_vertices(features_.chart_count);
     for (int f = 0; f < model_.face_count(); ++f)
         for (int e = g.begin(f); e < g.end(f); ++e) {
             const int h = g.neighbor[e];
@@ -582,6 +585,8 @@ std::vector<int> Lloyd::misfit_charts() const {
             const Vec3 a = q.gradient(model_.barycentres[f]), b = q.gradient(model_.barycentres[h]);
             ++crossings[features_.chart[f]];
             if (std::abs(a.dot(b)) < cos_half * a.norm() * b.norm()) ++bends[features_.chart[f]];
+            if (!owned[features_.chart[f]])
+                for (int v : shared_edge(model_, f, h)) crease_vertices[features_.chart[f]].emplace_back(labels_[f], v);
         }
     std::vector<std::pair<double, int>> excess;  // (excess error, chart)
     for (int c = 0; c < features_.chart_count; ++c) {
@@ -599,7 +604,7 @@ std::vector<int> Lloyd::misfit_charts() const {
         // crease stays within a couple of σ).
         // No fit does better than the noise (a small chart's own fit follows it).
         const double own = options_.chart_factor * std::max(chart_error_[c], noise);
-        const bool bent = crossings[c] > 0 && 2 * bends[c] >= crossings[c];
+        const bool bent = (crossings[c] > 0 && 2 * bends[c] >= crossings[c]) || rounds_off(crease_vertices[c], noise / area);
         // Nor does its own fit tell when the chart is several surfaces (the rounded rim of
         // a plate, one facet tall, which the regions of the faces above and below share):
         // a chart whose faces turn away from the surfaces of the regions holding most of
@@ -614,6 +619,28 @@ std::vector<int> Lloyd::misfit_charts() const {
     std::vector<int> out;
     for (const auto& e : excess) out.push_back(e.second);
     return out;
+}
+
+bool Lloyd::rounds_off(std::vector<std::pair<int, int>> crease_vertices, double noise2, const Quadric* united) const {
+    // The vertices along a crease lie on both faces; a quadric through the crease misses
+    // them by several σ where it rounds the corner off. The noise alone, even at the
+    // vertices whose displacement made a false crease, leaves them within 2.5 σ (RMS, the
+    // procedural corpus's noisy parts, in regions of one true face): beyond chart_factor²
+    // σ, the crease is real and the region crosses it. Three vertices at least: fewer say
+    // nothing against the noise.
+    std::sort(crease_vertices.begin(), crease_vertices.end());
+    crease_vertices.erase(std::unique(crease_vertices.begin(), crease_vertices.end()), crease_vertices.end());
+    if (crease_vertices.size() < 3) return false;
+    double sum = 0;
+    for (const auto& [region, v] : crease_vertices) {
+        const Quadric& q = united ? *united : proxies_[region].quadric;
+        const Vec3& p = model_.points[v];
+        const double gradient2 = q.gradient(p).squaredNorm();
+        if (!(gradient2 > 0)) continue;
+        sum += q.value(p) * q.value(p) / gradient2;
+    }
+    const double factor2 = options_.chart_factor * options_.chart_factor;
+    return sum > crease_vertices.size() * factor2 * factor2 * std::max(noise2, kStoredPrecision * kStoredPrecision);
 }
 
 int Lloyd::insert_into_charts(int count) {
@@ -1059,7 +1086,7 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
     if (!lies_on(a, error[0], is_strip(model_, labels_, faces[a], m), error[1] / proxies_[b].area) ||
         !lies_on(b, error[1], is_strip(model_, labels_, faces[b], m), error[0] / proxies_[a].area))
         return false;
-    return !bends_through_creases(q, faces[a], b) && !faces_both_ways(q, faces[a], faces[b]) && !strays(q, faces[a]) &&
+    return !bends_through_creases(q, faces[a], faces[b]) && !faces_both_ways(q, faces[a], faces[b]) && !strays(q, faces[a]) &&
            !strays(q, faces[b]);
 }
 
@@ -1204,19 +1231,27 @@ bool Lloyd::strays(const Quadric& q, const std::vector<int>& region) const {
     return 2 * off > area;
 }
 
-bool Lloyd::bends_through_creases(const Quadric& q, const std::vector<int>& a, int b) const {
+bool Lloyd::bends_through_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b) const {
     const DualGraph& g = model_.graph;
     const double cos_half = std::cos(0.5 * options_.features.crease_angle * M_PI / 180);
+    const int region_a = labels_[a.front()], region_b = labels_[b.front()];
     int crossings = 0, bends = 0;
-    for (int f : a)
-        for (int e = g.begin(f); e < g.end(f); ++e) {
-            const int h = g.neighbor[e];
-            if (!features_.crease[e] || labels_[h] != b) continue;
-            const Vec3 x = q.gradient(model_.barycentres[f]), y = q.gradient(model_.barycentres[h]);
-            ++crossings;
-            if (std::abs(x.dot(y)) < cos_half * x.norm() * y.norm()) ++bends;
-        }
-    return crossings > 0 && 2 * bends >= crossings;
+    std::vector<std::pair<int, int>> crease_vertices;  // of every crease inside the union
+    for (const std::vector<int>* faces : {&a, &b})
+        for (int f : *faces)
+            for (int e = g.begin(f); e < g.end(f); ++e) {
+                const int h = g.neighbor[e];
+                if (!features_.crease[e] || (labels_[h] != region_a && labels_[h] != region_b)) continue;
+                for (int v : shared_edge(model_, f, h)) crease_vertices.emplace_back(region_a, v);
+                if (labels_[f] != region_a || labels_[h] != region_b) continue;
+                const Vec3 x = q.gradient(model_.barycentres[f]), y = q.gradient(model_.barycentres[h]);
+                ++crossings;
+                if (std::abs(x.dot(y)) < cos_half * x.norm() * y.norm()) ++bends;
+            }
+    if (crossings > 0 && 2 * bends >= crossings) return true;
+    // A quadric turning over several faces rounds the creases off instead (rounds_off).
+    const double area = proxies_[region_a].area + proxies_[region_b].area;
+    return rounds_off(crease_vertices, (region_noise_[region_a] + region_noise_[region_b]) / area, &q);
 }
 
 bool Lloyd::merge_handful() {

@@ -210,6 +210,10 @@ private:
     std::vector<char> owned_charts() const;
     // Charts without a seed whose faces fit worse than the noise explains, worst first.
     std::vector<int> misfit_charts() const;
+    // Whether the regions' quadrics (or `united`, for all) miss the vertices of the creases
+    // they cross (pairs of region and vertex) by more than the noise (`noise2`: its mean
+    // square) allows.
+    bool rounds_off(std::vector<std::pair<int, int>> crease_vertices, double noise2, const Quadric* united = nullptr) const;
     int insert_into_charts(int count);
     // A proxy seeded at a random face of `faces` that seeds none yet; false if all do.
     bool seed_at_random(const std::vector<int>& faces);
@@ -315,9 +319,10 @@ private:
     bool off_normal(const Quadric& q, int face) const;
     // Whether most of a region's faces are off_normal to q.
     bool strays(const Quadric& q, const std::vector<int>& region) const;
-    // Whether q, fitted to the faces a and region b, turns through the creases between
-    // them (by half the crease angle or more, on half of them): it would be fitting two faces.
-    bool bends_through_creases(const Quadric& q, const std::vector<int>& a, int b) const;
+    // Whether q, fitted to the faces of two regions, turns through the creases between
+    // them (by half the crease angle or more, on half of them) or rounds off a crease
+    // inside their union: it would be fitting two faces.
+    bool bends_through_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b) const;
     // A region of a handful of faces that explains nothing, while another (`worst`) has
     // errors the noise does not explain or, every region within its noise, while a chart
     // no proxy owns (`chart`, worst -1) holds far more error (region -1: none).
