@@ -604,7 +604,7 @@ std::vector<int> Lloyd::misfit_charts() const {
         // crease stays within a couple of σ).
         // No fit does better than the noise (a small chart's own fit follows it).
         const double own = options_.chart_factor * std::max(chart_error_[c], noise);
-        const bool bent = (crossings[c] > 0 && 2 * bends[c] >= crossings[c]) || rounds_off(crease_vertices[c], noise / area);
+        const bool bent = (crossings[c] > 0 && 2 * bends[c] >= crossings[c]) || rounds_off(std::move(crease_vertices[c]), noise / area);
         // Nor does its own fit tell when the chart is several surfaces (the rounded rim of
         // a plate, one facet tall, which the regions of the faces above and below share):
         // a chart whose faces turn away from the surfaces of the regions holding most of
@@ -1251,7 +1251,7 @@ bool Lloyd::bends_through_creases(const Quadric& q, const std::vector<int>& a, c
     if (crossings > 0 && 2 * bends >= crossings) return true;
     // A quadric turning over several faces rounds the creases off instead (rounds_off).
     const double area = proxies_[region_a].area + proxies_[region_b].area;
-    return rounds_off(crease_vertices, (region_noise_[region_a] + region_noise_[region_b]) / area, &q);
+    return rounds_off(std::move(crease_vertices), (region_noise_[region_a] + region_noise_[region_b]) / area, &q);
 }
 
 bool Lloyd::merge_handful() {
