@@ -197,6 +197,8 @@ private:
     bool decide_finish();  // automatic count: whether growth has ended (then finishes)
     void finish();
     void insert_batch();
+    // Up to `count` proxies: into misfit charts, misfit clusters, then at the worst faces.
+    int insert_where_needed(int count);
     void start_operation(Operation operation);
     void stop(StopReason reason);
     void evaluate(const std::vector<char>* changed = nullptr);
@@ -206,6 +208,8 @@ private:
     double noise_energy(int proxy) const;
     bool explained(int proxy) const;
     bool every_region_explained() const;
+    // A noisy mesh with some region its noise explains while another is not explained.
+    bool unevenly_spent() const;
     // Per chart: whether a proxy seeded in it holds at least half of it.
     std::vector<char> owned_charts() const;
     // Charts without a seed whose faces fit worse than the noise explains, worst first.
@@ -351,6 +355,9 @@ private:
     std::vector<char> seedable_;  // ChartFaces::seedable
     std::vector<double> chart_error_;  // under the chart's own fit
     std::vector<double> face_noise_;    // A roughness² per face
+    // The mesh's median roughness is above `precision`: noise everywhere (a scan, a noisy
+    // export), not the local roughness of creases and coarse facets.
+    bool noisy_ = false;
     std::vector<double> region_noise_;  // its sum per region, from evaluate()
     SplitMix64 rng_;
     Flooding flooding_;
@@ -376,6 +383,8 @@ private:
     int unpaid_repairs_ = 0;                     // repairs in a row that did not pay
     bool iterating_ = false;
     bool teleport_pending_ = false;
+    int wide_teleport_ = 0;    // proxies the next wide teleport inserts (0: none left)
+    bool wide_pending_ = false;  // the pending teleport is a wide one
     bool finishing_ = false;              // automatic count: no more insertions, merges only
     double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
