@@ -208,8 +208,6 @@ private:
     double noise_energy(int proxy) const;
     bool explained(int proxy) const;
     bool every_region_explained() const;
-    // A noisy mesh with some region its noise explains while another is not explained.
-    bool unevenly_spent() const;
     // Per chart: whether a proxy seeded in it holds at least half of it.
     std::vector<char> owned_charts() const;
     // Charts without a seed whose faces fit worse than the noise explains, worst first.
