@@ -429,14 +429,13 @@ TEST(CadExtraction, NoisyFilletsStayApartFromTheirPlanesAtACount) {
     // the larger region is (a plane stays a plane), which keeps them apart. Still short of
     // the corpus's bar (bench/RESULTS.md §4): the Lloyd partition itself, within the noise,
     // does not follow the tangent seams (0.6148 until the noise was measured by local
-    // quadric fits, METHOD §3: 0.5905). Wide teleports (METHOD §2) spend the proxies anew:
-    // 0.7324, though the finish then joins pieces that lie on one surface (16 → 15 regions).
+    // quadric fits, METHOD §3: 0.5905).
     const std::vector<CorpusCase> cases = cad_corpus({"rounded_block"});
     const auto noisy = std::find_if(cases.begin(), cases.end(), [](const CorpusCase& c) { return c.variant == "noisy"; });
     const Part part = make_part(noisy->part, noisy->options);
     const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), noisy->options.seed));
-    EXPECT_GE(o.regions, 15);
-    EXPECT_GE(o.accuracy, 0.72);
+    EXPECT_GE(o.regions, 16);
+    EXPECT_GE(o.accuracy, 0.58);
     EXPECT_EQ(o.two_part, 0);
 }
 
