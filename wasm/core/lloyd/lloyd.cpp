@@ -439,7 +439,7 @@ void Lloyd::decide_at_target() {
             return start_operation(Operation::teleport);
         }
     }
-    // On a noisy mesh no single teleport paying is no sign of a good partition: a general
+    // On a noisy mesh, that no single teleport pays says little of the partition: a general
     // quadric bends round a fillet and its plane within the noise of both, so Lloyd's
     // energy has many minima within the noise, and one proxy moved at a time cannot leave
     // one where two neighbouring surfaces share three regions badly (the noisy stepped
@@ -447,9 +447,8 @@ void Lloyd::decide_at_target() {
     // the cone, accuracy 0.941). A wider teleport puts a batch of proxies where they are
     // needed and merges back to the count, two, then four and so on up to half the count,
     // kept if less error is left unexplained by the noise (that shaft: four, 0.999, as the
-    // automatic count finds it). A clean mesh's
-    // energy tells its surfaces apart; there the wide moves cost iterations for nothing
-    // (chess_pawn/12: 50 → 73, the same RMS).
+    // automatic count finds it). A clean mesh's energy tells its surfaces apart; there the
+    // wide moves cost iterations for nothing (chess_pawn/12: 50 → 73, the same RMS).
     const int count = static_cast<int>(proxies_.size());
     if (noisy_ && wide_teleport_ > 0 && wide_teleport_ <= (count + 1) / 2) {
         snapshot_ = {labels_, proxies_, energy_};

@@ -382,8 +382,8 @@ private:
     bool iterating_ = false;
     bool teleport_pending_ = false;
     int wide_teleport_ = 0;    // proxies the next wide teleport inserts (0: none left)
-    bool wide_pending_ = false;
-    double wide_unexplained_ = 0;  // unexplained() before it  // the pending teleport is a wide one
+    bool wide_pending_ = false;      // the pending teleport is a wide one
+    double wide_unexplained_ = 0;    // unexplained() before it
     bool finishing_ = false;              // automatic count: no more insertions, merges only
     double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
