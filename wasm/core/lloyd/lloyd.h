@@ -324,7 +324,8 @@ private:
     // Whether q, fitted to the faces of two regions, turns through the creases between
     // them (by half the crease angle or more, on half of them) or rounds off a crease
     // inside their union: it would be fitting two faces.
-    bool bends_through_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b) const;
+    bool bends_through_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b,
+                               bool inside = true) const;
     // A region of a handful of faces that explains nothing, while another (`worst`) has
     // errors the noise does not explain or, every region within its noise, while a chart
     // no proxy owns (`chart`, worst -1) holds far more error (region -1: none).
@@ -381,7 +382,7 @@ private:
     int unpaid_repairs_ = 0;                     // repairs in a row that did not pay
     bool iterating_ = false;
     bool teleport_pending_ = false;
-    int wide_teleport_ = 0;    // proxies the next wide teleport inserts (0: none left)
+    int wide_teleport_ = 0;    // proxies the next wide teleport inserts
     bool wide_pending_ = false;      // the pending teleport is a wide one
     double wide_unexplained_ = 0;    // unexplained() before it
     bool finishing_ = false;              // automatic count: no more insertions, merges only
