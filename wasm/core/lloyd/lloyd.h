@@ -323,7 +323,7 @@ private:
     bool strays(const Quadric& q, const std::vector<int>& region) const;
     // Whether q, fitted to the faces of two regions, turns through the creases between
     // them (by half the crease angle or more, on half of them) or rounds off a crease
-    // inside their union: it would be fitting two faces.
+    // inside their union (`inside` false: one between them): it would be fitting two faces.
     bool bends_through_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b,
                                bool inside = true) const;
     // A region of a handful of faces that explains nothing, while another (`worst`) has
