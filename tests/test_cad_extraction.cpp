@@ -51,11 +51,13 @@ Options counted(int proxies, std::uint64_t seed = 1) {
 }
 
 // The corpus's case of this part and variant (its own pose, noise and seed), at its true count.
-std::pair<Part, Outcome> corpus_case_at_true_count(const std::string& part_name, const std::string& variant) {
-    for (const CorpusCase& c : cad_corpus())
-        if (c.part == part_name && c.variant == variant) {
+// `seed_offset`: added to the corpus's seed for the method's choices (the same mesh).
+std::pair<Part, Outcome> corpus_case_at_true_count(const std::string& part_name, const std::string& variant,
+                                                   std::uint64_t seed_offset = 0) {
+    for (const CorpusCase& c : cad_corpus({part_name}))
+        if (c.variant == variant) {
             Part part = make_part(c.part, c.options);
-            Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed));
+            Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed + seed_offset));
             return {std::move(part), std::move(o)};
         }
     throw std::invalid_argument("no corpus case " + part_name + " " + variant);
@@ -444,14 +446,10 @@ TEST(CadExtraction, ProxiesSpentBadlyUnderNoiseAreSpentAgainByAWideTeleport) {
     // the chamfer's cone was shared three ways and one region bent over a cylinder and half
     // the cone (RMS 2.4 × its noise), and no single teleport paid (accuracy 0.9408). Four
     // proxies more and four merges back find its seven faces, as the automatic count does.
-    for (const CorpusCase& c : cad_corpus({"stepped_shaft"})) {
-        if (c.variant != "noisy") continue;
-        const Part part = make_part(c.part, c.options);
-        const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed + 1));
-        EXPECT_GE(o.accuracy, 0.99);
-        EXPECT_EQ(o.regions, 7);
-        EXPECT_EQ(o.two_part, 0);
-    }
+    const Outcome o = corpus_case_at_true_count("stepped_shaft", "noisy", 1).second;
+    EXPECT_GE(o.accuracy, 0.99);
+    EXPECT_EQ(o.regions, 7);
+    EXPECT_EQ(o.two_part, 0);
 }
 
 TEST(CadExtraction, UnderNoiseTheMergeBackToTheCountDoesNotJoinTwoFacesAcrossACrease) {
@@ -460,22 +458,14 @@ TEST(CadExtraction, UnderNoiseTheMergeBackToTheCountDoesNotJoinTwoFacesAcrossACr
     // 4 kept two sides of the block as one eccentric elliptic cone (crease vertices missed
     // by 11 σ) while its slot's flat wall held two proxies (accuracy 0.9149); the noisy hex
     // nut, at every seed, its bottom and one flat side as one region (0.9158).
-    for (const CorpusCase& c : cad_corpus({"slotted_block"})) {
-        if (c.variant != "noisy") continue;
-        const Part part = make_part(c.part, c.options);
-        const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed + 4));
-        EXPECT_GE(o.accuracy, 0.99);
-        EXPECT_EQ(o.regions, 10);
-    }
-    for (const CorpusCase& c : cad_corpus({"hex_nut"})) {
-        if (c.variant != "noisy") continue;
-        const Part part = make_part(c.part, c.options);
-        for (std::uint64_t offset = 0; offset < 2; ++offset) {
-            SCOPED_TRACE("hex nut, seed offset " + std::to_string(offset));
-            const Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed + offset));
-            EXPECT_GE(o.accuracy, 0.999);
-            EXPECT_EQ(o.regions, 11);
-        }
+    const Outcome slotted = corpus_case_at_true_count("slotted_block", "noisy", 4).second;
+    EXPECT_GE(slotted.accuracy, 0.99);
+    EXPECT_EQ(slotted.regions, 10);
+    for (std::uint64_t offset = 0; offset < 2; ++offset) {
+        SCOPED_TRACE("hex nut, seed offset " + std::to_string(offset));
+        const Outcome o = corpus_case_at_true_count("hex_nut", "noisy", offset).second;
+        EXPECT_GE(o.accuracy, 0.999);
+        EXPECT_EQ(o.regions, 11);
     }
 }
 

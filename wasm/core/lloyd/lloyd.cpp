@@ -447,8 +447,9 @@ void Lloyd::decide_at_target() {
     // the cone, accuracy 0.941). A wider teleport puts a batch of proxies where they are
     // needed and merges back to the count, two, then four and so on up to half the count,
     // each kept if it leaves less error unexplained by the noise, undone otherwise (that
-    // shaft: four, 0.999, as the automatic count finds it). A clean mesh's energy tells its surfaces apart; there the
-    // wide moves cost iterations for nothing (chess_pawn/12: 50 → 73, the same RMS).
+    // shaft: two, then four, 0.998, as the automatic count finds it). A clean mesh's energy
+    // tells its surfaces apart; there the wide moves cost iterations for nothing
+    // (chess_pawn/12: 50 → 73, the same RMS).
     const int count = static_cast<int>(proxies_.size());
     if (noisy_ && wide_teleport_ > 0 && wide_teleport_ <= (count + 1) / 2) {
         snapshot_ = {labels_, proxies_, energy_};
@@ -533,8 +534,9 @@ void Lloyd::finish() {
 }
 
 int Lloyd::insert_where_needed(int count) {
-    int added = options_.init == Initialization::features ? insert_into_charts(count) : 0;
-    if (added < count && options_.init == Initialization::features) added += insert_into_clusters(count - added);
+    // Charts and clusters are none under the paper's initialisation.
+    int added = insert_into_charts(count);
+    if (added < count) added += insert_into_clusters(count - added);
     return added + insert_farthest(count - added);
 }
 
@@ -1023,11 +1025,11 @@ bool Lloyd::merge_cheapest() {
         return !has_two_parts(classify_union(u).type) && !faces_both_ways(u.fit.quadric, faces[a], faces[b]);
     };
     // Under noise a quadric rounds a sharp crease off within the noise of both faces (an
-    // eccentric elliptic cone over two sides of the noisy slotted block), so there its
-    // cost says nothing against it: on a noisy mesh, a union that
-    // turns through the creases between the two regions merges two faces, and is taken
-    // only when no other merge is valid. Only the creases between them: a region already
-    // across one would otherwise bar every merge with it.
+    // eccentric elliptic cone over two sides of the noisy slotted block), so there its cost
+    // says nothing against it: on a noisy mesh, a union that turns through the creases
+    // between the two regions merges two faces, and is taken only when no other merge is
+    // valid. Only the creases between them: a region already across one would otherwise
+    // bar every merge with it.
     if (noisy_ && merge_least_cost([](int, int) { return true; }, [&](const Union& u, int a, int b, const RegionFaces& faces) {
             return valid(u, a, b, faces) && !bends_through_creases(u.fit.quadric, faces[a], faces[b], false);
         }))
