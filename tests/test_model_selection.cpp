@@ -2,11 +2,13 @@
 // keeps its type, clean and with noise, and the special types give their parameters.
 #include "fitting/fit.h"
 #include "fitting/model_selection.h"
+#include "fitting/special_fit.h"
 #include "geometry/model.h"
 #include "geometry/moments.h"
 #include "shapes.h"
 #include "test_support.h"
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -291,5 +293,29 @@ TEST(ModelSelection, AQuadricNeedsMoreVerticesThanParameters) {
         ASSERT_EQ(s.points.size(), 8u);
         const ModelChoice choice = select_model(s, fit_region(moments_of(model, faces)).quadric);
         EXPECT_LT(choice.chosen.parameters, 8) << type_name(choice.chosen.type);
+    }
+}
+
+TEST(ModelSelection, AParaboloidIsFittedToAPieceOfSphereFromAnAxisFarOff) {
+    // A sphere's quadric has no direction of linearity: the axis its eigenvalues name for
+    // the paraboloid is as good as any, on csg.off up to 84° from the piece's own. From
+    // there Levenberg–Marquardt crawled, turning the axis, and stopped at its iteration
+    // cap with 4× the RMS of the best paraboloid (the one from the piece's axis).
+    std::mt19937 rng(3);
+    test::Surface piece = test::surfaces()[1];
+    ASSERT_EQ(piece.type, QuadricType::sphere);
+    piece.u1 = 1.15, piece.v1 = 3;  // 66° from the pole, 172° around it
+    for (int trial = 0; trial < 2; ++trial) {
+        const Eigen::Matrix3d R = test::random_rotation(rng);
+        const Patch patch = mesh_patch(piece, R, Vec3(0.2, 0.5, -1), 0, 1, rng, 10);
+        const auto best = fit_paraboloid_geometric(patch.vertices, R.col(2));
+        ASSERT_TRUE(best.has_value());
+        for (double degrees : {60, 66, 72, 84}) {
+            SCOPED_TRACE(degrees);
+            const double a = degrees * M_PI / 180;
+            const auto fit = fit_paraboloid_geometric(patch.vertices, R * Vec3(std::sin(a), 0, std::cos(a)));
+            ASSERT_TRUE(fit.has_value());
+            EXPECT_LE(fit->rms, 1.01 * best->rms);
+        }
     }
 }

@@ -222,43 +222,57 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
 }
 
 std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3& axis_guess) {
-    // Start: the heights over the plane ⊥ axis_guess through the centroid, fitted by a
-    // quadratic; its principal axes and curvatures, and its apex.
-    const Eigen::Matrix3d frame = frame_with_axis(axis_guess);
     const Vec3 origin = weighted_centroid(s);
-    Eigen::Matrix<double, 6, 6> AtA = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> Atb = Eigen::Matrix<double, 6, 1>::Zero();
-    for (std::size_t i = 0; i < s.points.size(); ++i) {
-        const Vec3 q = frame.transpose() * (s.points[i] - origin);
-        Eigen::Matrix<double, 6, 1> row;
-        row << q.x() * q.x(), q.x() * q.y(), q.y() * q.y(), q.x(), q.y(), 1;
-        AtA += s.weights[i] * row * row.transpose();
-        Atb += s.weights[i] * row * q.z();
-    }
-    const Eigen::Matrix<double, 6, 1> c = AtA.ldlt().solve(Atb);
-    if (!c.allFinite()) return std::nullopt;
-    Eigen::Matrix2d H;
-    H << c[0], 0.5 * c[1], 0.5 * c[1], c[2];
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(H);
-    const Eigen::Vector2d k = eig.eigenvalues();
-    if (!(k[0] * k[1] > 0)) return std::nullopt;  // not elliptic
-    const Eigen::Vector2d apex2 = H.ldlt().solve(-0.5 * Eigen::Vector2d(c[3], c[4]));
-    const double apex_z = c[5] + 0.5 * Eigen::Vector2d(c[3], c[4]).dot(apex2);
-    Eigen::Matrix3d start;
-    start.col(0) = frame * Vec3(eig.eigenvectors()(0, 0), eig.eigenvectors()(1, 0), 0);
-    start.col(2) = frame.col(2);
-    start.col(1) = start.col(2).cross(start.col(0));
-    const Vec3 apex = origin + frame * Vec3(apex2.x(), apex2.y(), apex_z);
     double spread = 0;
-    for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - origin).squaredNorm();
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const Vec3 d = s.points[i] - origin;
+        spread += s.weights[i] * d.squaredNorm();
+        cov += s.weights[i] * d * d.transpose();
+    }
     const double scale = std::sqrt(spread / s.total_weight) + 1e-300;
-    // θ: apex offset (3), axis tilt (2), turn about the axis (1), curvatures (2).
-    auto unpack = [&](const Eigen::Matrix<double, 8, 1>& t, Classification& shape) {
-        const Vec3 axis = (start.col(2) + t[3] * start.col(0) + t[4] * start.col(1)).normalized();
-        Vec3 x = (start.col(0) + t[5] * start.col(1));
+    // A start: the heights over the plane ⊥ `axis` through the centroid, fitted by a
+    // quadratic; its principal axes and curvatures, and its apex.
+    struct Start {
+        Vec3 apex;
+        Eigen::Matrix3d frame;
+        Eigen::Vector2d curvatures;
+    };
+    auto start_along = [&](const Vec3& axis) -> std::optional<Start> {
+        const Eigen::Matrix3d frame = frame_with_axis(axis);
+        Eigen::Matrix<double, 6, 6> AtA = Eigen::Matrix<double, 6, 6>::Zero();
+        Eigen::Matrix<double, 6, 1> Atb = Eigen::Matrix<double, 6, 1>::Zero();
+        for (std::size_t i = 0; i < s.points.size(); ++i) {
+            const Vec3 q = frame.transpose() * (s.points[i] - origin);
+            Eigen::Matrix<double, 6, 1> row;
+            row << q.x() * q.x(), q.x() * q.y(), q.y() * q.y(), q.x(), q.y(), 1;
+            AtA += s.weights[i] * row * row.transpose();
+            Atb += s.weights[i] * row * q.z();
+        }
+        const Eigen::Matrix<double, 6, 1> c = AtA.ldlt().solve(Atb);
+        if (!c.allFinite()) return std::nullopt;
+        Eigen::Matrix2d H;
+        H << c[0], 0.5 * c[1], 0.5 * c[1], c[2];
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(H);
+        if (!(eig.eigenvalues()[0] * eig.eigenvalues()[1] > 0)) return std::nullopt;  // not elliptic
+        const Eigen::Vector2d apex2 = H.ldlt().solve(-0.5 * Eigen::Vector2d(c[3], c[4]));
+        const double apex_z = c[5] + 0.5 * Eigen::Vector2d(c[3], c[4]).dot(apex2);
+        Start start;
+        start.frame.col(0) = frame * Vec3(eig.eigenvectors()(0, 0), eig.eigenvectors()(1, 0), 0);
+        start.frame.col(2) = frame.col(2);
+        start.frame.col(1) = start.frame.col(2).cross(start.frame.col(0));
+        start.apex = origin + frame * Vec3(apex2.x(), apex2.y(), apex_z);
+        start.curvatures = eig.eigenvalues();
+        if (!start.apex.allFinite()) return std::nullopt;
+        return start;
+    };
+    // θ: apex offset (3), axis tilt (2), turn about the axis (1), curvatures (2), from a start.
+    auto unpack = [](const Start& start, const Eigen::Matrix<double, 8, 1>& t, Classification& shape) {
+        const Vec3 axis = (start.frame.col(2) + t[3] * start.frame.col(0) + t[4] * start.frame.col(1)).normalized();
+        Vec3 x = (start.frame.col(0) + t[5] * start.frame.col(1));
         x = (x - x.dot(axis) * axis).normalized();
         shape.type = QuadricType::elliptic_paraboloid;
-        shape.center = apex + Vec3(t[0], t[1], t[2]);
+        shape.center = start.apex + Vec3(t[0], t[1], t[2]);
         shape.rotation.col(0) = x;
         shape.rotation.col(2) = axis;
         shape.rotation.col(1) = axis.cross(x);
@@ -272,20 +286,41 @@ std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3&
         const Vec3 b = -R.col(2) - 2 * A * shape.center;
         return Quadric::from(A, b, shape.center.dot(A * shape.center) + R.col(2).dot(shape.center));
     };
-    Eigen::Matrix<double, 8, 1> theta;
-    theta << 0, 0, 0, 0, 0, 0, k[0], k[1];
-    theta = least_squares<8>(
-        s, theta,
+    auto at_start = [](const Start& start) {
+        Eigen::Matrix<double, 8, 1> theta;
+        theta << 0, 0, 0, 0, 0, 0, start.curvatures[0], start.curvatures[1];
+        return theta;
+    };
+    auto start_cost = [&](const Start& start) {
+        Classification shape;
+        unpack(start, at_start(start), shape);
+        const Quadric q = quadric_of(shape);
+        const double a = q.hessian_norm();
+        double c = 0;
+        for (std::size_t i = 0; i < s.points.size(); ++i) c += s.weights[i] * std::pow(taubin_distance(q, a, s.points[i]), 2);
+        return c;
+    };
+    // Whether the region curves like a paraboloid at all, the general quadric's direction
+    // of linearity says. But where the quadric is nearly a sphere, every direction is about
+    // as flat and that axis is arbitrary: Levenberg–Marquardt then spent its 50 iterations
+    // turning it. The heights over the samples' own plane (a cap's axis) start too, and the
+    // start nearer the samples is descended.
+    std::optional<Start> start = start_along(axis_guess);
+    if (!start) return std::nullopt;
+    const std::optional<Start> over_plane = start_along(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0));
+    if (over_plane && start_cost(*over_plane) < start_cost(*start)) start = over_plane;
+    const Eigen::Matrix<double, 8, 1> theta = least_squares<8>(
+        s, at_start(*start),
         [&](const Eigen::Matrix<double, 8, 1>& t) {
             Classification shape;
-            unpack(t, shape);
+            unpack(*start, t, shape);
             const Quadric q = quadric_of(shape);
             const double a = q.hessian_norm();
             return [q, a](const Vec3& p) { return taubin_distance(q, a, p); };
         },
         scale);
     SpecialFit fit;
-    unpack(theta, fit.shape);
+    unpack(*start, theta, fit.shape);
     if (!(fit.shape.semi_axes[0] * fit.shape.semi_axes[1] > 0)) return std::nullopt;
     const Quadric q = quadric_of(fit.shape);
     // Report semi-axes as the classification does: √(1/|k|).

@@ -30,7 +30,8 @@ std::optional<SpecialFit> fit_sphere_geometric(const Samples& samples);
 // `axis_guess`: the direction the general quadric suggests for the axis.
 std::optional<SpecialFit> fit_cylinder_geometric(const Samples& samples, const Vec3& axis_guess);
 std::optional<SpecialFit> fit_cone_geometric(const Samples& samples, const Vec3& axis_guess, const Vec3& apex_guess);
-// z = k1 x² + k2 y² in a frame whose z is `axis_guess` (k1, k2 of one sign).
+// z = k1 x² + k2 y² (k1, k2 of one sign), started along `axis_guess` or the samples'
+// plane's normal; none when the heights over the plane ⊥ `axis_guess` are not elliptic.
 std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& samples, const Vec3& axis_guess);
 
 }  // namespace vqsa
