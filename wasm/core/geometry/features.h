@@ -32,4 +32,9 @@ struct Features {
 
 Features detect_features(const Model& model, const FeatureOptions& options = {});
 
+// The squared error the noise explains on face f, area · roughness², before any factor.
+inline double face_noise(const Model& model, const std::vector<double>& roughness, int f) {
+    return model.areas[f] * roughness[f] * roughness[f];
+}
+
 }  // namespace vqsa

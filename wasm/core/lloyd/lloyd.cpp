@@ -186,10 +186,7 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
         for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
     }
     face_noise_.resize(model_.face_count());
-    for (int f = 0; f < model_.face_count(); ++f) {
-        const double r = features_.roughness[f];
-        face_noise_[f] = model_.areas[f] * r * r;
-    }
+    for (int f = 0; f < model_.face_count(); ++f) face_noise_[f] = face_noise(model_, features_.roughness, f);
     std::vector<double> roughness = features_.roughness;
     if (!roughness.empty()) {
         std::nth_element(roughness.begin(), roughness.begin() + roughness.size() / 2, roughness.end());
@@ -1031,7 +1028,7 @@ bool Lloyd::merge_cheapest() {
     // valid. Only the creases between them: a region already across one would otherwise
     // bar every merge with it.
     if (noisy_ && merge_least_cost([](int, int) { return true; }, [&](const Union& u, int a, int b, const RegionFaces& faces) {
-            return valid(u, a, b, faces) && !bends_through_creases(u.fit.quadric, faces[a], faces[b], false);
+            return valid(u, a, b, faces) && !joins_faces_across_creases(u.fit.quadric, faces[a], faces[b], false);
         }))
         return true;
     return merge_least_cost([](int, int) { return true; }, valid);
@@ -1141,7 +1138,7 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
     if (!lies_on(a, error[0], is_strip(model_, labels_, faces[a], m), error[1] / proxies_[b].area) ||
         !lies_on(b, error[1], is_strip(model_, labels_, faces[b], m), error[0] / proxies_[a].area))
         return false;
-    return !bends_through_creases(q, faces[a], faces[b]) && !faces_both_ways(q, faces[a], faces[b]) && !strays(q, faces[a]) &&
+    return !joins_faces_across_creases(q, faces[a], faces[b]) && !faces_both_ways(q, faces[a], faces[b]) && !strays(q, faces[a]) &&
            !strays(q, faces[b]);
 }
 
@@ -1286,8 +1283,8 @@ bool Lloyd::strays(const Quadric& q, const std::vector<int>& region) const {
     return 2 * off > area;
 }
 
-bool Lloyd::bends_through_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b,
-                                  bool inside) const {
+bool Lloyd::joins_faces_across_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b,
+                                       bool inside) const {
     const DualGraph& g = model_.graph;
     const double cos_half = std::cos(0.5 * options_.features.crease_angle * M_PI / 180);
     const int region_a = labels_[a.front()], region_b = labels_[b.front()];

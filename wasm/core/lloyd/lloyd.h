@@ -324,8 +324,8 @@ private:
     // Whether q, fitted to the faces of two regions, turns through the creases between
     // them (by half the crease angle or more, on half of them) or rounds off a crease
     // inside their union (`inside` false: one between them): it would be fitting two faces.
-    bool bends_through_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b,
-                               bool inside = true) const;
+    bool joins_faces_across_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b,
+                                    bool inside = true) const;
     // A region of a handful of faces that explains nothing, while another (`worst`) has
     // errors the noise does not explain or, every region within its noise, while a chart
     // no proxy owns (`chart`, worst -1) holds far more error (region -1: none).

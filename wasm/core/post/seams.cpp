@@ -2,6 +2,7 @@
 
 #include "fitting/face_errors.h"
 #include "fitting/least_squares.h"
+#include "geometry/features.h"
 
 #include <algorithm>
 #include <optional>
@@ -184,7 +185,7 @@ bool SeamSimplifier::may_change(int r) const { return !may_change_ || (*may_chan
 
 double SeamSimplifier::noise_energy(const std::vector<int>& faces) const {
     double noise = 0;
-    for (int f : faces) noise += model_.areas[f] * (*roughness_)[f] * (*roughness_)[f];
+    for (int f : faces) noise += face_noise(model_, *roughness_, f);
     return options_.lloyd.noise_factor * options_.lloyd.noise_factor * noise;
 }
 
