@@ -20,6 +20,14 @@ Eigen::Matrix3d frame_with_axis(const Vec3& axis) {
     return r;
 }
 
+// The normal of the samples' least-squares plane through `centroid`, their weighted centroid.
+Vec3 plane_normal(const Samples& s, const Vec3& centroid) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+        cov += s.weights[i] * (s.points[i] - centroid) * (s.points[i] - centroid).transpose();
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+}
+
 // The fit that is `shape`: its quadric and its RMS orthogonal distance to the samples.
 SpecialFit fit_of(const Classification& shape, const Samples& s) {
     SpecialFit fit;
@@ -85,13 +93,10 @@ Quadric special_quadric(const Classification& shape) {
 
 std::optional<SpecialFit> fit_plane_geometric(const Samples& s) {
     const Vec3 c = weighted_centroid(s);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (std::size_t i = 0; i < s.points.size(); ++i) cov += s.weights[i] * (s.points[i] - c) * (s.points[i] - c).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
     Classification shape;
     shape.type = QuadricType::plane;
     shape.center = c;
-    shape.rotation = frame_with_axis(eig.eigenvectors().col(0));
+    shape.rotation = frame_with_axis(plane_normal(s, c));
     return fit_of(shape, s);
 }
 
@@ -224,12 +229,7 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
 std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3& axis_guess) {
     const Vec3 origin = weighted_centroid(s);
     double spread = 0;
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (std::size_t i = 0; i < s.points.size(); ++i) {
-        const Vec3 d = s.points[i] - origin;
-        spread += s.weights[i] * d.squaredNorm();
-        cov += s.weights[i] * d * d.transpose();
-    }
+    for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - origin).squaredNorm();
     const double scale = std::sqrt(spread / s.total_weight) + 1e-300;
     // A start: the heights over the plane ⊥ `axis` through the centroid, fitted by a
     // quadratic; its principal axes and curvatures, and its apex.
@@ -291,14 +291,12 @@ std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3&
         theta << 0, 0, 0, 0, 0, 0, start.curvatures[0], start.curvatures[1];
         return theta;
     };
-    auto start_cost = [&](const Start& start) {
+    auto start_rms = [&](const Start& start) {
         Classification shape;
         unpack(start, at_start(start), shape);
         const Quadric q = quadric_of(shape);
         const double a = q.hessian_norm();
-        double c = 0;
-        for (std::size_t i = 0; i < s.points.size(); ++i) c += s.weights[i] * std::pow(taubin_distance(q, a, s.points[i]), 2);
-        return c;
+        return weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, a, p); });
     };
     // Whether the region curves like a paraboloid at all, the general quadric's direction
     // of linearity says. But where the quadric is nearly a sphere, every direction is about
@@ -307,8 +305,8 @@ std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3&
     // start nearer the samples is descended.
     std::optional<Start> start = start_along(axis_guess);
     if (!start) return std::nullopt;
-    const std::optional<Start> over_plane = start_along(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0));
-    if (over_plane && start_cost(*over_plane) < start_cost(*start)) start = over_plane;
+    const std::optional<Start> over_plane = start_along(plane_normal(s, origin));
+    if (over_plane && start_rms(*over_plane) < start_rms(*start)) start = over_plane;
     const Eigen::Matrix<double, 8, 1> theta = least_squares<8>(
         s, at_start(*start),
         [&](const Eigen::Matrix<double, 8, 1>& t) {
