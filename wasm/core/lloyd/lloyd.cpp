@@ -175,18 +175,26 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     seedable_.assign(model_.face_count(), 0);
     for (int f = 0; f < model_.face_count(); ++f)
         for (int k = g.begin(f); k < g.end(f) && !seedable_[f]; ++k) seedable_[f] = !features_.crease[k];
-    // Each chart's error under its own fit, what a proxy of its own would leave.
-    chart_error_.assign(features_.chart_count, 0.0);
-    FaceErrors own;
-    for (int c = 0; c < features_.chart_count; ++c) {
-        if (static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
-        const Moments sum = moments_of(model_, chart_faces_[c]);
-        if (!(sum[0] > 0)) continue;
-        own.reset(model_, {fit_proxy(sum, static_cast<int>(chart_faces_[c].size()), options_).quadric});
-        for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
-    }
     face_noise_.resize(model_.face_count());
     for (int f = 0; f < model_.face_count(); ++f) face_noise_[f] = face_noise(model_, features_.roughness, f);
+    // Each chart's error under its own fit, what a proxy of its own would leave. A chart
+    // of a handful of faces is as likely noise as structure, unless it is an exact plane
+    // (exactly_planar: a coarse CAD tessellation's face, two triangles).
+    chart_error_.assign(features_.chart_count, 0.0);
+    chart_told_.assign(features_.chart_count, 0);
+    FaceErrors own;
+    for (int c = 0; c < features_.chart_count; ++c) {
+        const int faces = static_cast<int>(chart_faces_[c].size());
+        const Moments sum = moments_of(model_, chart_faces_[c]);
+        if (!(sum[0] > 0) || faces < 2) continue;
+        const Fit fit = fit_proxy(sum, faces, options_);
+        double noise = 0;
+        for (int f : chart_faces_[c]) noise += face_noise_[f];
+        chart_told_[c] = faces >= options_.min_quadric_faces || exactly_planar(faces, fit.mean_squared, noise / sum[0]);
+        if (!chart_told_[c]) continue;
+        own.reset(model_, {fit.quadric});
+        for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
+    }
     std::vector<double> roughness = features_.roughness;
     if (!roughness.empty()) {
         std::nth_element(roughness.begin(), roughness.begin() + roughness.size() / 2, roughness.end());
@@ -631,9 +639,9 @@ std::vector<int> Lloyd::misfit_charts() const {
         }
     std::vector<std::pair<double, int>> excess;  // (excess error, chart)
     for (int c = 0; c < features_.chart_count; ++c) {
-        // A chart of a handful of faces is as likely noise as structure: farthest-point
-        // insertion finds it if it matters.
-        if (owned[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
+        // A chart too small to tell (chart_told_): farthest-point insertion finds it if it
+        // matters.
+        if (owned[c] || !chart_told_[c]) continue;
         double error = 0, area = 0, noise = 0, off = 0;  // area: a floor for rounding
         for (int f : chart_faces_[c]) {
             error += errors_[f], area += model_.areas[f], noise += face_noise_[f];
@@ -1308,9 +1316,53 @@ bool Lloyd::joins_faces_across_creases(const Quadric& q, const std::vector<int>&
     return rounds_off(std::move(crease_vertices), (region_noise_[region_a] + region_noise_[region_b]) / area, &q);
 }
 
+bool Lloyd::exactly_planar(int faces, double plane_mean_squared, double noise2) {
+    // Two triangles or more in one plane as closely as a file stores them, where the mesh
+    // is as exact (a coarse CAD tessellation's face: a box as 12 triangles, a prism's
+    // sides one quad each). Under any noise a few faces fit a plane within it, and tell
+    // nothing (a 2-face flap of the mask's scan).
+    const double stored = kStoredPrecision * kStoredPrecision;
+    return faces >= 2 && plane_mean_squared <= stored && noise2 <= stored;
+}
+
+bool Lloyd::vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const {
+    // A tessellation's vertices are on its surface and its faces cut inside: judged by the
+    // vertices, against how closely the other region's own vertices lie on its quadric.
+    const Quadric& q = proxies_[other].quadric;
+    auto farthest = [&](const std::vector<int>& of) {
+        double d = 0;
+        for (int f : of)
+            for (int v : model_.triangles[f]) {
+                const Vec3& x = model_.points[v];
+                const double g = q.gradient(x).norm();
+                d = std::max(d, g > 0 ? std::abs(q.value(x)) / g : std::numeric_limits<double>::infinity());
+            }
+        return d;
+    };
+    return farthest(region) <= farthest(faces[other]) + kStoredPrecision;
+}
+
 bool Lloyd::merge_handful() {
+    // A handful of faces is too few to tell a quadric, but an exact plane is told
+    // (exactly_planar): it joins a neighbour only as a piece of its surface, a facet of a
+    // coarse cylinder whose vertices are on it. Merged at least cost instead, a 12-triangle
+    // box became one cylinder.
+    const RegionFaces faces = faces_by_region();
+    const DualGraph& g = model_.graph;
+    auto bounded_by_creases = [&](int r) {
+        for (int f : faces[r])
+            for (int e = g.begin(f); e < g.end(f); ++e)
+                if (labels_[g.neighbor[e]] != r && !features_.crease[e]) return false;
+        return true;
+    };
+    auto handful = [&](int r, int into) {
+        const Proxy& p = proxies_[r];
+        if (p.faces >= options_.min_quadric_faces) return false;
+        return !(p.fitted && exactly_planar(p.faces, p.fit_error, region_noise_[r] / p.area) && bounded_by_creases(r)) ||
+               vertices_on(faces[r], into, faces);
+    };
     return merge_least_cost(
-        [&](int a, int b) { return std::min(proxies_[a].faces, proxies_[b].faces) < options_.min_quadric_faces; },
+        [&](int a, int b) { return handful(a, b) || handful(b, a); },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
             return !union_on_two_parts(u, a, b) && !faces_both_ways(u.fit.quadric, faces[a], faces[b]);
         });
@@ -1417,7 +1469,7 @@ Lloyd::Stuck Lloyd::find_stuck() const {
     if (worst < 0 && options_.init == Initialization::features) {
         const std::vector<char> owned = owned_charts();
         for (int c = 0; c < features_.chart_count; ++c) {
-            if (owned[c] || static_cast<int>(chart_faces_[c].size()) < options_.min_quadric_faces) continue;
+            if (owned[c] || !chart_told_[c]) continue;
             double error = 0;
             for (int f : chart_faces_[c]) error += errors_[f];
             if (error > worst_excess) worst_excess = error, chart = c;

@@ -279,7 +279,15 @@ private:
     // Below a target count: judges the last insertion, then whether insertions have stopped
     // paying with every region explained.
     bool fitted_below_target();
-    // A region of fewer than min_quadric_faces faces into the neighbour it costs least.
+    // Whether `faces` faces whose plane leaves `plane_mean_squared`, where the noise is
+    // `noise2` (mean square), are an exact plane: a face of a coarse CAD tessellation,
+    // however few of them.
+    static bool exactly_planar(int faces, double plane_mean_squared, double noise2);
+    // Whether the vertices of `region` lie on the surface of region `other` as closely as
+    // its own do.
+    bool vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const;
+    // A region of fewer than min_quadric_faces faces into the neighbour it costs least;
+    // one exactly planar, only into a neighbour its vertices lie on.
     bool merge_handful();
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
     // surface with (one_surface), the cheapest: whether any.
@@ -353,6 +361,7 @@ private:
     std::vector<std::vector<int>> chart_faces_;
     std::vector<char> seedable_;  // ChartFaces::seedable
     std::vector<double> chart_error_;  // under the chart's own fit
+    std::vector<char> chart_told_;     // a face of its own, not too small to tell (see the constructor)
     std::vector<double> face_noise_;    // A roughness² per face
     // The mesh's median roughness is above `precision`: noise everywhere (a scan, a noisy
     // export), not the local roughness of creases and coarse facets.
