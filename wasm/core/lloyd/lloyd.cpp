@@ -1,5 +1,6 @@
 #include "lloyd/lloyd.h"
 
+#include "fitting/distance.h"
 #include "fitting/model_selection.h"
 #include "fitting/samples.h"
 
@@ -1329,14 +1330,11 @@ bool Lloyd::vertices_on(const std::vector<int>& region, int other, const RegionF
     // A tessellation's vertices are on its surface and its faces cut inside: judged by the
     // vertices, against how closely the other region's own vertices lie on its quadric.
     const Quadric& q = proxies_[other].quadric;
+    const double hessian_norm = q.hessian_norm();
     auto farthest = [&](const std::vector<int>& of) {
         double d = 0;
         for (int f : of)
-            for (int v : model_.triangles[f]) {
-                const Vec3& x = model_.points[v];
-                const double g = q.gradient(x).norm();
-                d = std::max(d, g > 0 ? std::abs(q.value(x)) / g : std::numeric_limits<double>::infinity());
-            }
+            for (int v : model_.triangles[f]) d = std::max(d, taubin_distance(q, hessian_norm, model_.points[v]));
         return d;
     };
     return farthest(region) <= farthest(faces[other]) + kStoredPrecision;
