@@ -1318,12 +1318,12 @@ bool Lloyd::joins_faces_across_creases(const Quadric& q, const std::vector<int>&
 }
 
 bool Lloyd::exactly_planar(int faces, double plane_mean_squared, double noise2) {
-    // Two triangles or more in one plane as closely as a file stores them, where the mesh
-    // is as exact (a coarse CAD tessellation's face: a box as 12 triangles, a prism's
-    // sides one quad each). Under any noise a few faces fit a plane within it, and tell
-    // nothing (a 2-face flap of the mask's scan).
+    // Faces in one plane as closely as a file stores them, where the mesh is as exact (a
+    // coarse CAD tessellation's face: a box as 12 triangles, a prism's sides one quad
+    // each, a chamfered box's corner one triangle). Under any noise a few faces fit a
+    // plane within it, and tell nothing (a 2-face flap of the mask's scan).
     const double stored = kStoredPrecision * kStoredPrecision;
-    return faces >= 2 && plane_mean_squared <= stored && noise2 <= stored;
+    return faces >= 1 && plane_mean_squared <= stored && noise2 <= stored;
 }
 
 bool Lloyd::vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const {
@@ -1344,19 +1344,13 @@ bool Lloyd::merge_handful() {
     // A handful of faces is too few to tell a quadric, but an exact plane is told
     // (exactly_planar): it joins a neighbour only as a piece of its surface, a facet of a
     // coarse cylinder whose vertices are on it. Merged at least cost instead, a 12-triangle
-    // box became one cylinder.
+    // box became one cylinder, and a chamfered box of 44 triangles (its chamfers bend by
+    // 45°, less than the crease angle; each corner one triangle) one sphere.
     const RegionFaces faces = faces_by_region();
-    const DualGraph& g = model_.graph;
-    auto bounded_by_creases = [&](int r) {
-        for (int f : faces[r])
-            for (int e = g.begin(f); e < g.end(f); ++e)
-                if (labels_[g.neighbor[e]] != r && !features_.crease[e]) return false;
-        return true;
-    };
     auto handful = [&](int r, int into) {
         const Proxy& p = proxies_[r];
         if (p.faces >= options_.min_quadric_faces) return false;
-        return !(p.fitted && exactly_planar(p.faces, p.fit_error, region_noise_[r] / p.area) && bounded_by_creases(r)) ||
+        return !(p.fitted && exactly_planar(p.faces, p.fit_error, region_noise_[r] / p.area)) ||
                vertices_on(faces[r], into, faces);
     };
     return merge_least_cost(
