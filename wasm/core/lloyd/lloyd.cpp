@@ -191,7 +191,7 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
         const Fit fit = fit_proxy(sum, faces, options_);
         double noise = 0;
         for (int f : chart_faces_[c]) noise += face_noise_[f];
-        chart_told_[c] = faces >= options_.min_quadric_faces || exactly_planar(faces, fit.mean_squared, noise / sum[0]);
+        chart_told_[c] = faces >= options_.min_quadric_faces || exactly_planar(fit.mean_squared, noise / sum[0]);
         if (!chart_told_[c]) continue;
         own.reset(model_, {fit.quadric});
         for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
@@ -1317,13 +1317,13 @@ bool Lloyd::joins_faces_across_creases(const Quadric& q, const std::vector<int>&
     return rounds_off(std::move(crease_vertices), (region_noise_[region_a] + region_noise_[region_b]) / area, &q);
 }
 
-bool Lloyd::exactly_planar(int faces, double plane_mean_squared, double noise2) {
+bool Lloyd::exactly_planar(double plane_mean_squared, double noise2) {
     // Faces in one plane as closely as a file stores them, where the mesh is as exact (a
     // coarse CAD tessellation's face: a box as 12 triangles, a prism's sides one quad
     // each, a chamfered box's corner one triangle). Under any noise a few faces fit a
     // plane within it, and tell nothing (a 2-face flap of the mask's scan).
     const double stored = kStoredPrecision * kStoredPrecision;
-    return faces >= 1 && plane_mean_squared <= stored && noise2 <= stored;
+    return plane_mean_squared <= stored && noise2 <= stored;
 }
 
 bool Lloyd::vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const {
@@ -1350,7 +1350,7 @@ bool Lloyd::merge_handful() {
     auto handful = [&](int r, int into) {
         const Proxy& p = proxies_[r];
         if (p.faces >= options_.min_quadric_faces) return false;
-        return !(p.fitted && exactly_planar(p.faces, p.fit_error, region_noise_[r] / p.area)) ||
+        return !(p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area)) ||
                vertices_on(faces[r], into, faces);
     };
     return merge_least_cost(

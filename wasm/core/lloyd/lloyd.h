@@ -279,10 +279,10 @@ private:
     // Below a target count: judges the last insertion, then whether insertions have stopped
     // paying with every region explained.
     bool fitted_below_target();
-    // Whether `faces` faces whose plane leaves `plane_mean_squared`, where the noise is
-    // `noise2` (mean square), are an exact plane: a face of a coarse CAD tessellation,
-    // however few of them.
-    static bool exactly_planar(int faces, double plane_mean_squared, double noise2);
+    // Whether faces whose plane leaves `plane_mean_squared`, where the noise is `noise2`
+    // (mean square), are an exact plane: a face of a coarse CAD tessellation, however few
+    // of them (one triangle too).
+    static bool exactly_planar(double plane_mean_squared, double noise2);
     // Whether the vertices of `region` lie on the surface of region `other` as closely as
     // its own do.
     bool vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const;
