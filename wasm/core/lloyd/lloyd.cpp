@@ -768,7 +768,12 @@ int Lloyd::insert_farthest(int count) {
         if (automatic() && explained(region)) continue;
         // The worst face counted with its neighbours, a seedable one where there is one: a
         // lone outlier face (a sliver, a spike, a fold-over) would seed a proxy that never
-        // grows.
+        // grows. But in a plane region, a face without noise off the plane is a face of its
+        // own, however lone: a chamfered box's corner, one triangle (counted with its
+        // neighbours, the seed went to the chamfer beside it, and at its true count of 26
+        // the box ended with 19 or 20 regions). A quadric region's faces err by the
+        // tessellation's sag, most on the largest triangles: there the sum stays.
+        const bool lone_faces_tell = proxies_[region].quadric.is_plane();
         int worst = -1, worst_rank = -1;  // rank: 1 seedable
         double worst_error = -1;
         const DualGraph& g = model_.graph;
@@ -776,8 +781,9 @@ int Lloyd::insert_farthest(int count) {
             const int rank = seedable_[f];
             if (labels_[f] != region || f == proxies_[region].seed || rank < worst_rank) continue;
             double e = errors_[f];
-            for (int k = g.begin(f); k < g.end(f); ++k)
-                if (labels_[g.neighbor[k]] == region) e += errors_[g.neighbor[k]];
+            if (!(lone_faces_tell && features_.roughness[f] <= kStoredPrecision))
+                for (int k = g.begin(f); k < g.end(f); ++k)
+                    if (labels_[g.neighbor[k]] == region) e += errors_[g.neighbor[k]];
             if (rank > worst_rank || e > worst_error) worst_error = e, worst = f, worst_rank = rank;
         }
         add_proxy(worst);
