@@ -432,7 +432,11 @@ TEST(CadExtraction, AFaceOfTwoTrianglesIsAPlaneOfItsOwn) {
 // triangles), in the pose `rotation`, each face a polygon fanned from its first corner: 44
 // triangles. No edge bends by the crease angle but the corners' (55°), so one chart holds
 // nearly all of it.
-PolygonSoup chamfered_box(const Eigen::Matrix3d& rotation) {
+struct LabelledSoup {
+    PolygonSoup soup;
+    std::vector<int> face_of_triangle;  // per fanned triangle: its true face, the polygon
+};
+LabelledSoup chamfered_box(const Eigen::Matrix3d& rotation) {
     const double a = 1.0, b = 0.7, c = 0.4, d = 0.1;
     PolygonSoup soup;
     // Point k of corner (sx, sy, sz): on the side normal to axis k, beside that corner.
@@ -459,8 +463,13 @@ PolygonSoup chamfered_box(const Eigen::Matrix3d& rotation) {
                 polygons.push_back({at(su, -1, k), at(su, 1, k), at(su, 1, u), at(su, -1, u)});
         }
     for (int corner = 0; corner < 8; ++corner) polygons.push_back({3 * corner, 3 * corner + 1, 3 * corner + 2});
-    for (const std::vector<int>& polygon : polygons) soup.add_polygon(polygon.data(), polygon.size());
-    return soup;
+    EXPECT_EQ(polygons.size(), 26u);
+    std::vector<int> face_of_triangle;
+    for (std::size_t k = 0; k < polygons.size(); ++k) {
+        soup.add_polygon(polygons[k].data(), polygons[k].size());
+        face_of_triangle.insert(face_of_triangle.end(), polygons[k].size() - 2, static_cast<int>(k));
+    }
+    return {std::move(soup), std::move(face_of_triangle)};
 }
 
 TEST(CadExtraction, ACoarseExportHasNoNoise) {
@@ -469,7 +478,7 @@ TEST(CadExtraction, ACoarseExportHasNoNoise) {
     // every region "explained". An exact tessellation (its faces coplanar with neighbours to
     // the stored precision) has no noise to measure. (Automatic, the box ends as its 26
     // planes in most poses and stops growing at 1 to 3 regions in others: docs/METHOD.md §7.)
-    const PolygonSoup soup = chamfered_box(Eigen::AngleAxisd(1.1, Vec3(-2, 1, 3).normalized()).toRotationMatrix());
+    const PolygonSoup soup = chamfered_box(Eigen::AngleAxisd(1.1, Vec3(-2, 1, 3).normalized()).toRotationMatrix()).soup;
     const Mesh box = build_mesh(soup);
     ASSERT_EQ(box.face_count(), 44u);
     const Model model = make_model(box);
@@ -494,22 +503,15 @@ TEST(CadExtraction, AtItsTrueCountAChamferedBoxIsItsFaces) {
     const auto uniform = [&] { return static_cast<double>(rng.below(1u << 20)) / (1u << 20); };
     for (int pose = 0; pose < 5; ++pose) {
         const Vec3 axis = Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalized();
-        const Mesh box = build_mesh(chamfered_box(Eigen::AngleAxisd(6.28 * uniform(), axis).toRotationMatrix()));
+        const LabelledSoup truth = chamfered_box(Eigen::AngleAxisd(6.28 * uniform(), axis).toRotationMatrix());
+        const Mesh box = build_mesh(truth.soup);
+        ASSERT_EQ(box.face_count(), 44u);
         const Result r = test::approximate(box, counted(26));
         ASSERT_EQ(r.proxies.size(), 26u) << "pose " << pose;
-        // The truth: a triangle's plane tells which of the 26 faces it lies on.
         std::vector<int> face_of_region(26, -1);
         std::vector<char> face_taken(26, 0);
-        std::vector<Eigen::Vector4d> planes;
         for (int f = 0; f < static_cast<int>(box.face_count()); ++f) {
-            const auto& t = box.triangles[f];
-            const Vec3& o = box.vertices[t[0]];
-            Vec3 n = (box.vertices[t[1]] - o).cross(box.vertices[t[2]] - o).normalized();
-            if (n.dot(Vec3(1, 2, 3)) < 0) n = -n;
-            const Eigen::Vector4d plane(n.x(), n.y(), n.z(), n.dot(o));
-            int face = 0;
-            while (face < static_cast<int>(planes.size()) && (planes[face] - plane).norm() > 1e-9) ++face;
-            if (face == static_cast<int>(planes.size())) planes.push_back(plane);
+            const int face = truth.face_of_triangle[box.source_face[f]];
             int& region_face = face_of_region[r.face_labels[f]];
             if (region_face < 0) {
                 EXPECT_FALSE(face_taken[face]) << "pose " << pose << ": face " << face << " split";
@@ -517,7 +519,6 @@ TEST(CadExtraction, AtItsTrueCountAChamferedBoxIsItsFaces) {
             }
             EXPECT_EQ(region_face, face) << "pose " << pose << ": region " << r.face_labels[f] << " over two faces";
         }
-        EXPECT_EQ(planes.size(), 26u);
         for (const ProxyResult& p : r.proxies) EXPECT_EQ(p.type, QuadricType::plane) << "pose " << pose;
     }
 }
