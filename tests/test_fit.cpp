@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace vqsa;
 
 namespace {
@@ -122,4 +124,44 @@ TEST(Classify, ExactQuadricsOfEveryTypeInRandomPoses) {
             const Classification c = classify(q, t + R * Vec3(0.2, 0.1, 0.7), 1.0);
             EXPECT_STREQ(type_name(c.type), type_name(type)) << "pose " << pose;
         }
+}
+
+TEST(Fit, AmongTheQuadricsThroughTwoRingsTheFacetsChooseOne) {
+    // A hole one facet deep: its two rings of vertices lie on its cylinder and on every
+    // quadric of their pencil (the pair of planes through them among them), so the
+    // vertices alone determine none; the facets, chords inside the cylinder, do.
+    std::mt19937 rng(8);
+    const Eigen::Matrix3d R = test::random_rotation(rng);
+    const Vec3 t(0.4, -1.2, 2.5);
+    const int sides = 12;
+    const double depth = 0.3;
+    std::vector<Vec3> rings;
+    for (double z : {0.0, depth})
+        for (int k = 0; k < sides; ++k)
+            rings.push_back(R * Vec3(std::cos(2 * M_PI * k / sides), std::sin(2 * M_PI * k / sides), z) + t);
+    Moments vertices{}, facets{};
+    for (const Vec3& p : rings) add_to(vertices, point_moments(p, 1.0));
+    for (int k = 0; k < sides; ++k) {
+        const Vec3 &a = rings[k], &b = rings[(k + 1) % sides], &c = rings[sides + k], &d = rings[sides + (k + 1) % sides];
+        add_to(facets, triangle_moments(a, b, d));
+        add_to(facets, triangle_moments(a, d, c));
+    }
+    const Fit by_vertices = fit_taubin(vertices);
+    EXPECT_LT(by_vertices.mean_squared, 1e-12);  // to the stored precision, squared
+    EXPECT_LT(by_vertices.next_mean_squared, 1e-12);  // a pencil: no quadric of its own
+
+    const double sag = 1 - std::cos(M_PI / sides);
+    const Fit chosen = fit_taubin_through(vertices, facets, sag * sag);
+    for (const Vec3& p : rings) EXPECT_LT(taubin_distance(chosen.quadric, p), 1e-9);
+    EXPECT_LT(chosen.mean_squared, sag * sag);
+    EXPECT_GT(chosen.next_mean_squared, 4 * sag * sag);  // the planes through the rings are far
+    const Classification c = classify(chosen.quadric, t, 1.0);
+    EXPECT_TRUE(c.type == QuadricType::cylinder || c.type == QuadricType::hyperboloid_one_sheet) << type_name(c.type);
+    EXPECT_LT(angle_degrees(c.axis(), R.col(2)), 1e-6);
+
+    // Points on no quadric: none.
+    Moments scattered = vertices;
+    add_to(scattered, point_moments(t + R * Vec3(0.2, 0.1, 0.9), 1.0));
+    add_to(scattered, point_moments(t + R * Vec3(0.5, -0.3, -0.4), 1.0));
+    EXPECT_TRUE(std::isinf(fit_taubin_through(scattered, facets, 1e-12).mean_squared));
 }

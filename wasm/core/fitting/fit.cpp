@@ -5,6 +5,9 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
 
 namespace vqsa {
 
@@ -36,11 +39,13 @@ Fit to_unit_frame(const Fit& local_fit, const LocalMoments& local) {
 constexpr int kMonomial[10][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 0},
                                   {1, 1, 0}, {1, 0, 1}, {0, 2, 0}, {0, 1, 1}, {0, 0, 2}};
 
-Fit taubin_local(const LocalMoments& local, double regularization) {
-    const Moments& mu = local.mean;
-    auto moment = [&](int i, int j, int k) { return mu[moment_index(i, j, k)]; };
+using Matrix10 = Eigen::Matrix<double, 10, 10>;
 
-    Eigen::Matrix<double, 10, 10> M, N;
+// Taubin's two forms over the monomials: M, the mean squared value of a quadric, and N,
+// that of its gradient.
+std::pair<Matrix10, Matrix10> taubin_forms(const Moments& mu) {
+    auto moment = [&](int i, int j, int k) { return mu[moment_index(i, j, k)]; };
+    Matrix10 M, N;
     for (int a = 0; a < 10; ++a)
         for (int b = 0; b < 10; ++b) {
             M(a, b) = moment(kMonomial[a][0] + kMonomial[b][0], kMonomial[a][1] + kMonomial[b][1],
@@ -55,7 +60,11 @@ Fit taubin_local(const LocalMoments& local, double regularization) {
             }
             N(a, b) = n;
         }
+    return {M, N};
+}
 
+Fit taubin_local(const LocalMoments& local, double regularization) {
+    const auto [M, N] = taubin_forms(local.mean);
     // Eliminate C0 (it has no gradient): C0 = -m0ᵀ s̃ / m00 with m00 = 1.
     const Eigen::Matrix<double, 9, 1> m0 = M.block<9, 1>(1, 0);
     Eigen::Matrix<double, 9, 9> reduced = M.block<9, 9>(1, 1) - m0 * m0.transpose();
@@ -121,6 +130,45 @@ RegionFrame region_frame(const Moments& m) {
 Fit fit_taubin(const Moments& region) {
     const LocalMoments local = localize(region);
     return to_unit_frame(taubin_local(local, FitOptions{}.regularization), local);
+}
+
+Fit fit_taubin_through(const Moments& points, const Moments& faces, double on) {
+    const LocalMoments local = localize(points);
+    Moments face_mean = shifted_moments(faces, local.center, local.radius);
+    for (double& v : face_mean) v /= faces[0];
+    const auto [Mp, Np] = taubin_forms(local.mean);
+    const auto [Mf, Nf] = taubin_forms(face_mean);
+    // The quadrics through the points: Taubin's eigenvectors within `on` of them, each
+    // with its C0 (eliminated as in taubin_local).
+    const Eigen::Matrix<double, 9, 1> m0 = Mp.block<9, 1>(1, 0);
+    Eigen::Matrix<double, 9, 9> reduced = Mp.block<9, 9>(1, 1) - m0 * m0.transpose();
+    Eigen::Matrix<double, 9, 9> gradient = Np.block<9, 9>(1, 1);
+    gradient.diagonal().array() += FitOptions{}.regularization * gradient.trace() / 9.0;
+    reduced = 0.5 * (reduced + reduced.transpose()).eval();
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> points_solver(reduced, gradient);
+    if (points_solver.info() != Eigen::Success) throw std::runtime_error("quadric fit: the eigen solver failed");
+    const double squared_scale = local.radius * local.radius;
+    int count = 0;
+    while (count < 9 && points_solver.eigenvalues()[count] * squared_scale <= on) ++count;
+    constexpr double kNone = std::numeric_limits<double>::infinity();
+    if (count == 0) return {Quadric{}, kNone, kNone};
+    Eigen::MatrixXd through(10, count);
+    for (int j = 0; j < count; ++j) {
+        const Eigen::Matrix<double, 9, 1> s = points_solver.eigenvectors().col(j);
+        through(0, j) = -m0.dot(s);
+        through.block(1, j, 9, 1) = s;
+    }
+    // Among them, Taubin's fit to the faces.
+    Eigen::MatrixXd A = through.transpose() * Mf * through, B = through.transpose() * Nf * through;
+    A = 0.5 * (A + A.transpose()).eval();
+    B = 0.5 * (B + B.transpose()).eval();
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> faces_solver(A, B);
+    if (faces_solver.info() != Eigen::Success) throw std::runtime_error("quadric fit: the eigen solver failed");
+    const Eigen::Matrix<double, 10, 1> c = through * faces_solver.eigenvectors().col(0);
+    Quadric q;
+    for (int i = 0; i < 10; ++i) q.c[i] = c[i];
+    const double next = count > 1 ? std::max(0.0, faces_solver.eigenvalues()[1]) : kNone;
+    return to_unit_frame({q, std::max(0.0, faces_solver.eigenvalues()[0]), next}, local);
 }
 
 Fit fit_plane(const Moments& region) {

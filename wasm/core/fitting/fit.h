@@ -38,6 +38,14 @@ struct Fit {
 // with C0 eliminated, solved in region-centred, region-scaled coordinates.
 Fit fit_taubin(const Moments& region);
 
+// Among the quadrics through `points` (Taubin's, within a mean squared distance `on`),
+// Taubin's fit to `faces`: where the points lie on many quadrics (the two rings of a hole
+// one facet deep lie on its cylinder and on the pair of planes through them), the one the
+// faces lie on. `next_mean_squared` is the faces' distance to the next one through the
+// points (infinite when the points determine the quadric; both infinite when they lie on
+// none).
+Fit fit_taubin_through(const Moments& points, const Moments& faces, double on);
+
 // The L2-optimal plane (area-weighted principal axes).
 Fit fit_plane(const Moments& region);
 

@@ -200,6 +200,7 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     if (!roughness.empty()) {
         std::nth_element(roughness.begin(), roughness.begin() + roughness.size() / 2, roughness.end());
         noisy_ = roughness[roughness.size() / 2] > options_.precision;
+        exact_ = roughness[roughness.size() / 2] <= kStoredPrecision;
     }
     initialize();
 }
@@ -501,10 +502,16 @@ bool Lloyd::fitted_below_target() {
 bool Lloyd::decide_finish() {
     // The last insertion is judged by what it bought: too little, and growing stops. Three
     // insertions in a row that do not pay end the growth (one alone may need more Lloyd
-    // iterations than its stage gave it).
+    // iterations than its stage gave it). On an exact export, one that left more error than
+    // before found a worse partition, not the last surface: its surfaces leave none at their
+    // count, and are the end of growth (fitted). It counts neither way (a chamfered box's
+    // chamfers bend by less than the crease angle, and in 6 of 30 poses two of three
+    // insertions from one to seven proxies raised the energy: growth stopped and the finish
+    // merged the lot into one sphere).
     if (energy_before_insert_ >= 0 && !finishing_ && misfit_charts().empty()) {
         if (energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_)) unpaid_ = 0;
-        else if (++unpaid_ >= 3) finishing_ = true, finish_reason_ = StopReason::no_gain;
+        else if (!(exact_ && energy_ > energy_before_insert_) && ++unpaid_ >= 3)
+            finishing_ = true, finish_reason_ = StopReason::no_gain;
     }
     if (!finishing_ && misfit_charts().empty() && misfit_clusters().empty() && every_region_explained())
         finishing_ = true, finish_reason_ = StopReason::fitted;
@@ -1162,14 +1169,26 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, cons
     std::vector<int> all;
     for (int r : regions) all.insert(all.end(), faces[r].begin(), faces[r].end());
     const Samples s = region_samples(model_, all);
-    const Fit fit = fit_taubin(moments_of(s));
+    const Moments vertices = moments_of(s);
+    Fit fit = fit_taubin(vertices);
     // The vertices must determine it: a strip one face wide, or ten vertices, lie on many
     // quadrics; no other may come within the tessellation's deviation (twice its median
-    // sagitta) of them.
+    // sagitta) of them. Or the faces must, among those: the two rings of a hole one facet
+    // deep lie on its cylinder and on every quadric of their pencil (the pair of planes
+    // through them, hyperboloids), and only the cylinder holds the facets within their sag.
     const double sag = 2 * s.tolerance;
     VertexSurface out;
-    out.determined = fit.mean_squared <= stored && fit.next_mean_squared > sag * sag;
-    if (!out.determined) return out;
+    if (!(fit.mean_squared <= stored)) return out;
+    if (!(fit.next_mean_squared > sag * sag)) {
+        // Nine points lie on quadrics whatever they are (noisy ones too): only more than
+        // nine on a pencil say something of the surface.
+        if (s.points.size() <= 9) return out;
+        fit = fit_taubin_through(vertices, fit_union(regions).moments, sag * sag);
+        const double a = fit.quadric.hessian_norm();
+        const double vertices_off = weighted_rms(s, [&](const Vec3& p) { return taubin_distance(fit.quadric, a, p); });
+        if (!(fit.next_mean_squared > sag * sag) || !(vertices_off * vertices_off <= stored)) return out;
+    }
+    out.determined = true;
     // The faces of each must sag from it no more than the tessellation does: a coarse
     // plane disc's vertices all lie on the rim of the cylinder beside it, its flat faces
     // cut across that cylinder. And they face one way.

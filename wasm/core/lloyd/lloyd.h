@@ -366,6 +366,9 @@ private:
     // The mesh's median roughness is above `precision`: noise everywhere (a scan, a noisy
     // export), not the local roughness of creases and coarse facets.
     bool noisy_ = false;
+    // Its median roughness is within the stored precision: an exact export, whose surfaces
+    // leave no error at their count.
+    bool exact_ = false;
     std::vector<double> region_noise_;  // its sum per region, from evaluate()
     SplitMix64 rng_;
     Flooding flooding_;
