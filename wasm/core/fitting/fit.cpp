@@ -63,22 +63,44 @@ std::pair<Matrix10, Matrix10> taubin_forms(const Moments& mu) {
     return {M, N};
 }
 
-Fit taubin_local(const LocalMoments& local, double regularization) {
-    const auto [M, N] = taubin_forms(local.mean);
-    // Eliminate C0 (it has no gradient): C0 = -m0ᵀ s̃ / m00 with m00 = 1.
-    const Eigen::Matrix<double, 9, 1> m0 = M.block<9, 1>(1, 0);
-    Eigen::Matrix<double, 9, 9> reduced = M.block<9, 9>(1, 1) - m0 * m0.transpose();
+// Taubin's problem with C0 eliminated (it has no gradient): C0 = -m0ᵀ s̃ / m00 with m00 = 1.
+struct ReducedTaubin {
+    Eigen::Matrix<double, 9, 1> m0;
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> solver;
+
+    // The quadric of eigenvector `k`, C0 restored.
+    Eigen::Matrix<double, 10, 1> coefficients(int k) const {
+        const Eigen::Matrix<double, 9, 1> s = solver.eigenvectors().col(k);
+        Eigen::Matrix<double, 10, 1> c;
+        c[0] = -m0.dot(s);
+        c.tail<9>() = s;
+        return c;
+    }
+};
+
+ReducedTaubin solve_reduced(const Matrix10& M, const Matrix10& N, double regularization) {
+    ReducedTaubin out;
+    out.m0 = M.block<9, 1>(1, 0);
+    Eigen::Matrix<double, 9, 9> reduced = M.block<9, 9>(1, 1) - out.m0 * out.m0.transpose();
     Eigen::Matrix<double, 9, 9> gradient = N.block<9, 9>(1, 1);
     gradient.diagonal().array() += regularization * gradient.trace() / 9.0;
     reduced = 0.5 * (reduced + reduced.transpose()).eval();
+    out.solver.compute(reduced, gradient);
+    if (out.solver.info() != Eigen::Success) throw std::runtime_error("quadric fit: the eigen solver failed");
+    return out;
+}
 
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> solver(reduced, gradient);
-    if (solver.info() != Eigen::Success) throw std::runtime_error("quadric fit: the eigen solver failed");
-    const Eigen::Matrix<double, 9, 1> s = solver.eigenvectors().col(0);
+Quadric quadric_of(const Eigen::Matrix<double, 10, 1>& c) {
     Quadric q;
-    q.c[0] = -m0.dot(s);
-    for (int i = 0; i < 9; ++i) q.c[i + 1] = s[i];
-    return {q, std::max(0.0, solver.eigenvalues()[0]), std::max(0.0, solver.eigenvalues()[1])};
+    for (int i = 0; i < 10; ++i) q.c[i] = c[i];
+    return q;
+}
+
+Fit taubin_local(const LocalMoments& local, double regularization) {
+    const auto [M, N] = taubin_forms(local.mean);
+    const ReducedTaubin taubin = solve_reduced(M, N, regularization);
+    const auto& eigenvalues = taubin.solver.eigenvalues();
+    return {quadric_of(taubin.coefficients(0)), std::max(0.0, eigenvalues[0]), std::max(0.0, eigenvalues[1])};
 }
 
 Fit plane_local(const LocalMoments& local) {
@@ -138,26 +160,15 @@ Fit fit_taubin_through(const Moments& points, const Moments& faces, double on) {
     for (double& v : face_mean) v /= faces[0];
     const auto [Mp, Np] = taubin_forms(local.mean);
     const auto [Mf, Nf] = taubin_forms(face_mean);
-    // The quadrics through the points: Taubin's eigenvectors within `on` of them, each
-    // with its C0 (eliminated as in taubin_local).
-    const Eigen::Matrix<double, 9, 1> m0 = Mp.block<9, 1>(1, 0);
-    Eigen::Matrix<double, 9, 9> reduced = Mp.block<9, 9>(1, 1) - m0 * m0.transpose();
-    Eigen::Matrix<double, 9, 9> gradient = Np.block<9, 9>(1, 1);
-    gradient.diagonal().array() += FitOptions{}.regularization * gradient.trace() / 9.0;
-    reduced = 0.5 * (reduced + reduced.transpose()).eval();
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> points_solver(reduced, gradient);
-    if (points_solver.info() != Eigen::Success) throw std::runtime_error("quadric fit: the eigen solver failed");
+    // The quadrics through the points: Taubin's eigenvectors within `on` of them.
+    const ReducedTaubin taubin = solve_reduced(Mp, Np, FitOptions{}.regularization);
     const double squared_scale = local.radius * local.radius;
     int count = 0;
-    while (count < 9 && points_solver.eigenvalues()[count] * squared_scale <= on) ++count;
+    while (count < 9 && taubin.solver.eigenvalues()[count] * squared_scale <= on) ++count;
     constexpr double kNone = std::numeric_limits<double>::infinity();
     if (count == 0) return {Quadric{}, kNone, kNone};
     Eigen::MatrixXd through(10, count);
-    for (int j = 0; j < count; ++j) {
-        const Eigen::Matrix<double, 9, 1> s = points_solver.eigenvectors().col(j);
-        through(0, j) = -m0.dot(s);
-        through.block(1, j, 9, 1) = s;
-    }
+    for (int j = 0; j < count; ++j) through.col(j) = taubin.coefficients(j);
     // Among them, Taubin's fit to the faces.
     Eigen::MatrixXd A = through.transpose() * Mf * through, B = through.transpose() * Nf * through;
     A = 0.5 * (A + A.transpose()).eval();
@@ -165,10 +176,8 @@ Fit fit_taubin_through(const Moments& points, const Moments& faces, double on) {
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> faces_solver(A, B);
     if (faces_solver.info() != Eigen::Success) throw std::runtime_error("quadric fit: the eigen solver failed");
     const Eigen::Matrix<double, 10, 1> c = through * faces_solver.eigenvectors().col(0);
-    Quadric q;
-    for (int i = 0; i < 10; ++i) q.c[i] = c[i];
     const double next = count > 1 ? std::max(0.0, faces_solver.eigenvalues()[1]) : kNone;
-    return to_unit_frame({q, std::max(0.0, faces_solver.eigenvalues()[0]), next}, local);
+    return to_unit_frame({quadric_of(c), std::max(0.0, faces_solver.eigenvalues()[0]), next}, local);
 }
 
 Fit fit_plane(const Moments& region) {
