@@ -1170,6 +1170,8 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, cons
     for (int r : regions) all.insert(all.end(), faces[r].begin(), faces[r].end());
     const Samples s = region_samples(model_, all);
     const Moments vertices = moments_of(s);
+    Moments united{};  // of the faces
+    for (int r : regions) add_to(united, proxies_[r].moments);
     Fit fit = fit_taubin(vertices);
     // The vertices must determine it: a strip one face wide, or ten vertices, lie on many
     // quadrics; no other may come within the tessellation's deviation (twice its median
@@ -1183,9 +1185,8 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, cons
         // Nine points lie on quadrics whatever they are (noisy ones too): only more than
         // nine on a pencil say something of the surface.
         if (s.points.size() <= 9) return out;
-        fit = fit_taubin_through(vertices, fit_union(regions).moments, sag * sag);
-        const double a = fit.quadric.hessian_norm();
-        const double vertices_off = weighted_rms(s, [&](const Vec3& p) { return taubin_distance(fit.quadric, a, p); });
+        fit = fit_taubin_through(vertices, united, sag * sag);
+        const double vertices_off = taubin_rms(s, fit.quadric);
         if (!(fit.next_mean_squared > sag * sag) || !(vertices_off * vertices_off <= stored)) return out;
     }
     out.determined = true;
@@ -1205,7 +1206,7 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, cons
     // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not
     // (as for a region: faces within the fit's error or the noise of where its parts meet
     // count on neither).
-    const Union u = {fit_union(regions).moments, fit};
+    const Union u = {united, fit};
     const double area = std::max(u.moments[0], 1e-300);
     const double margin = 2 * std::sqrt(std::max(fit.mean_squared, noise / area));
     out.one = !on_two_parts(fit.quadric, parts(fit.quadric, classify_union(u), margin, all), area);
