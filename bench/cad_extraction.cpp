@@ -127,6 +127,7 @@ int main(int argc, char** argv) {
     std::string json_path;
     bool pose = true;  // --pose 0: the canonical pose, easier to look at
     double detail = 1;  // --detail: every sample count scaled (0.4: a coarse CAD export's tessellation)
+    double noise = -1;  // --noise: the noisy variant's σ, relative to the diagonal (-1: the corpus's own)
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string flag = argv[i];
         if (flag == "--parts") parts = list(argv[i + 1]);
@@ -137,8 +138,9 @@ int main(int argc, char** argv) {
         else if (flag == "--verbose") verbose = std::string(argv[i + 1]) == "1";
         else if (flag == "--seed-offset") seed_offset = std::stoi(argv[i + 1]);
         else if (flag == "--detail") detail = std::stod(argv[i + 1]);
+        else if (flag == "--noise") noise = std::stod(argv[i + 1]);
         else {
-            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1] [--seed-offset K] [--detail X]\n";
+            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1] [--seed-offset K] [--detail X] [--noise X]\n";
             return 2;
         }
     }
@@ -158,6 +160,7 @@ int main(int argc, char** argv) {
         vqsa::PartOptions options = c.options;
         options.random_pose = pose;
         options.detail = detail;
+        if (noise >= 0 && options.noise > 0) options.noise = noise;
         const vqsa::Part part = vqsa::make_part(c.part, options);
         const int faces = static_cast<int>(part.surfaces.size());
         const std::string name = c.part + "_" + c.variant;

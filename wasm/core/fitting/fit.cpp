@@ -205,4 +205,37 @@ Fit fit_region(const Moments& region, const FitOptions& options) {
     return to_unit_frame(best, local);
 }
 
+// The mean squared distance of the region to the plane n·q = d (n a unit vector), in its
+// local frame.
+double plane_mean_squared(const LocalMoments& local, const Vec3& n, double d) {
+    const Moments& mu = local.mean;
+    double squared = d * d;
+    for (int r = 0; r < 3; ++r) {
+        int e1[3] = {0, 0, 0};
+        ++e1[r];
+        squared -= 2 * d * n[r] * mu[moment_index(e1[0], e1[1], e1[2])];
+        for (int c = 0; c < 3; ++c) {
+            int e[3] = {0, 0, 0};
+            ++e[r], ++e[c];
+            squared += n[r] * n[c] * mu[moment_index(e[0], e[1], e[2])];
+        }
+    }
+    return std::max(0.0, squared);
+}
+
+Fit plane_of_pair(const Moments& region, const Fit& fit, const FitOptions& options) {
+    const LocalMoments local = localize(region);
+    const Classification shape = classify(fit.quadric, local.center, local.radius);
+    if (shape.type != QuadricType::intersecting_planes) return fit;
+    const Fit plane = plane_local(local);
+    const double bound = (1 + options.plane_tolerance) * plane.mean_squared +
+                         options.negligible_distance * options.negligible_distance;
+    for (double sign : {-1.0, 1.0}) {
+        const Vec3 n = (shape.rotation * Vec3(1 / shape.semi_axes.x(), sign / shape.semi_axes.y(), 0)).normalized();
+        if (plane_mean_squared(local, n, n.dot(shape.center - local.center) / local.radius) <= bound)
+            return to_unit_frame(plane, local);
+    }
+    return fit;
+}
+
 }  // namespace vqsa

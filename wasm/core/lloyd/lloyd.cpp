@@ -863,6 +863,9 @@ Lloyd::Union Lloyd::fit_union(const std::vector<int>& regions) const {
     int faces = 0;
     for (int r : regions) add_to(u.moments, proxies_[r].moments), faces += proxies_[r].faces;
     u.fit = fit_proxy(u.moments, faces, options_);
+    // Only under noise: on an exact or finely tessellated mesh the second plane of a pair
+    // holds faces of its own (a strip of facets beyond a crease), which the plane would hide.
+    if (noisy_) u.fit = plane_of_pair(u.moments, u.fit, options_.fit);
     return u;
 }
 
@@ -1102,7 +1105,10 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces);
         const bool on_vertices = c.on_vertices || (!on_faces && vertices_on_one_surface(c.u, i, j, faces));
         if (!on_faces && !on_vertices) continue;
-        if (!c.exact && !on_vertices && !keeps_type(i, j, q, faces)) continue;
+        // Under noise, model selection types a piece of a plane as whatever bends within its
+        // noise (a paraboloid over half a noisy flange's face): a plane that holds both parts
+        // within their noise keeps no type but its own.
+        if (!c.exact && !on_vertices && !(noisy_ && q.is_plane()) && !keeps_type(i, j, q, faces)) continue;
         if (merged) *merged = pairs[c.pair];
         merge_into(i, {j}, c.u.fit);
         return true;
