@@ -12,11 +12,6 @@
 
 namespace vqsa {
 
-double taubin_rms(const Samples& s, const Quadric& q) {
-    const double a = q.hessian_norm();
-    return weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, a, p); });
-}
-
 namespace {
 
 bool on_two_parts(const Classification& c, const Samples& s, double margin) {

@@ -12,9 +12,6 @@
 
 namespace vqsa {
 
-// Weighted RMS of the samples' Taubin distance to q (fitting/distance.h).
-double taubin_rms(const Samples& s, const Quadric& q);
-
 struct TypedFit {
     QuadricType type = QuadricType::plane;
     Quadric quadric;       // unit coefficient norm

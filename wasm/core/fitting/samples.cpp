@@ -1,5 +1,7 @@
 #include "fitting/samples.h"
 
+#include "fitting/distance.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -45,6 +47,11 @@ Samples region_samples(const Model& model, const std::vector<int>& faces) {
     std::nth_element(deviation.begin(), middle, deviation.end());
     out.tolerance = *middle;
     return out;
+}
+
+double taubin_rms(const Samples& s, const Quadric& q) {
+    const double a = q.hessian_norm();
+    return weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, a, p); });
 }
 
 }  // namespace vqsa

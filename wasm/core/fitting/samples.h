@@ -1,6 +1,7 @@
 // Weighted points standing for a region, for the orthogonal-distance fits.
 #pragma once
 
+#include "fitting/quadric.h"
 #include "geometry/model.h"
 #include "io/mesh.h"
 
@@ -67,5 +68,8 @@ double weighted_rms(const Samples& s, const Distance& distance) {
     }
     return std::sqrt(sum / s.total_weight);
 }
+
+// Weighted RMS of the samples' Taubin distance to q (fitting/distance.h).
+double taubin_rms(const Samples& s, const Quadric& q);
 
 }  // namespace vqsa

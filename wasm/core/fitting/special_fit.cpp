@@ -294,9 +294,7 @@ std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3&
     auto start_rms = [&](const Start& start) {
         Classification shape;
         unpack(start, at_start(start), shape);
-        const Quadric q = quadric_of(shape);
-        const double a = q.hessian_norm();
-        return weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, a, p); });
+        return taubin_rms(s, quadric_of(shape));
     };
     // Whether the region curves like a paraboloid at all, the general quadric's direction
     // of linearity says. But where the quadric is nearly a sphere, every direction is about
@@ -324,7 +322,7 @@ std::optional<SpecialFit> fit_paraboloid_geometric(const Samples& s, const Vec3&
     // Report semi-axes as the classification does: √(1/|k|).
     fit.shape.semi_axes = Vec3(1 / std::sqrt(std::abs(fit.shape.semi_axes[0])), 1 / std::sqrt(std::abs(fit.shape.semi_axes[1])), 0);
     fit.quadric = normalized(q);
-    fit.rms = weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, p); });
+    fit.rms = taubin_rms(s, q);
     return fit;
 }
 
