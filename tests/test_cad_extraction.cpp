@@ -232,12 +232,11 @@ TEST(CadExtraction, PiecesOfOneNoisyFaceMergeAtACount) {
 }
 
 TEST(CadExtraction, UnderMoreNoiseThanTheCorpussAFlangeIsStillItsFacesAutomatically) {
-    // The corpus's noisy flange with half as much noise again (σ 0.3 % of the diagonal, a
-    // third of the plate's thickness over 50): Taubin's fit to pieces of a noisy plane is a
-    // pair of planes, or a flat cone, a quarter to a third below the plane's error, so the
-    // pieces never merged (12 to 14 regions, accuracy 0.73 to 0.89 at each seed). A pair one
-    // plane of which holds the union is that plane, and the plane through two pieces is a
-    // candidate for their merge.
+    // The corpus's noisy flange with half as much noise again (σ 0.3 % of the diagonal):
+    // Taubin's fit to two pieces of a noisy plane is a pair of planes, a quarter to a third
+    // below the plane's error, refused for its two parts, so the pieces never merged (12 to
+    // 14 regions, accuracy 0.73 to 0.89 at each seed). Under noise a pair one plane of which
+    // holds the union is that plane.
     for (const CorpusCase& c : cad_corpus({"flange"})) {
         if (c.variant != "noisy") continue;
         PartOptions options = c.options;

@@ -103,16 +103,20 @@ Fit taubin_local(const LocalMoments& local, double regularization) {
     return {quadric_of(taubin.coefficients(0)), std::max(0.0, eigenvalues[0]), std::max(0.0, eigenvalues[1])};
 }
 
-Fit plane_local(const LocalMoments& local) {
-    const Moments& mu = local.mean;
-    Eigen::Matrix3d covariance;
+// E[q qᵀ] over the region, q about its centroid (its covariance).
+Eigen::Matrix3d second_moments(const LocalMoments& local) {
+    Eigen::Matrix3d m;
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) {
             int e[3] = {0, 0, 0};
             ++e[r], ++e[c];
-            covariance(r, c) = mu[moment_index(e[0], e[1], e[2])];
+            m(r, c) = local.mean[moment_index(e[0], e[1], e[2])];
         }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    return m;
+}
+
+Fit plane_local(const LocalMoments& local) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(second_moments(local));
     return {Quadric::plane(solver.eigenvectors().col(0), Vec3::Zero()), std::max(0.0, solver.eigenvalues()[0])};
 }
 
@@ -206,21 +210,9 @@ Fit fit_region(const Moments& region, const FitOptions& options) {
 }
 
 // The mean squared distance of the region to the plane n·q = d (n a unit vector), in its
-// local frame.
+// local frame, whose origin is the region's centroid.
 double plane_mean_squared(const LocalMoments& local, const Vec3& n, double d) {
-    const Moments& mu = local.mean;
-    double squared = d * d;
-    for (int r = 0; r < 3; ++r) {
-        int e1[3] = {0, 0, 0};
-        ++e1[r];
-        squared -= 2 * d * n[r] * mu[moment_index(e1[0], e1[1], e1[2])];
-        for (int c = 0; c < 3; ++c) {
-            int e[3] = {0, 0, 0};
-            ++e[r], ++e[c];
-            squared += n[r] * n[c] * mu[moment_index(e[0], e[1], e[2])];
-        }
-    }
-    return std::max(0.0, squared);
+    return std::max(0.0, n.dot(second_moments(local) * n) + d * d);
 }
 
 Fit plane_of_pair(const Moments& region, const Fit& fit, const FitOptions& options) {
