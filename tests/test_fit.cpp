@@ -126,6 +126,33 @@ TEST(Classify, ExactQuadricsOfEveryTypeInRandomPoses) {
         }
 }
 
+TEST(Classify, AConesNappesAreTwoPartsOnlyWhereItsApexLiesBeyondTheRegion) {
+    // z² = slope² (x² + y²), a cone of half-angle 85°: 20 units from the apex its nappes are
+    // 2 × 20 × slope = 3.5 apart, two separate sheets to a region of radius 1 there.
+    const double slope = std::tan(5 * M_PI / 180);
+    Quadric flat;
+    flat.c = {0, 0, 0, 0, slope * slope, 0, 0, slope * slope, 0, -1};
+    std::mt19937 rng(5);
+    for (int pose = 0; pose < 3; ++pose) {
+        const Eigen::Matrix3d R = test::random_rotation(rng);
+        const Vec3 t = Vec3::Random();
+        const Quadric q = test::moved(flat, R, t);
+        const Vec3 top = t + R * Vec3(20, 0, 20 * slope), bottom = t + R * Vec3(20, 0, -20 * slope);
+        // A region of radius 1 around (20, 0, 0): the apex is 20 radii away.
+        const Classification far = classify(q, t + R * Vec3(20, 0, 0), 1.0);
+        ASSERT_STREQ(type_name(far.type), "cone");
+        EXPECT_TRUE(far.nappes_apart);
+        EXPECT_TRUE(has_two_parts(far));
+        EXPECT_EQ(part_of(far, top, 1e-3) * part_of(far, bottom, 1e-3), -1) << "pose " << pose;
+        EXPECT_EQ(part_of(far, top, 2.0), 0) << "within the margin of the plane through the apex";
+        // A region around the apex (a free-form region's cone passes through it): one piece.
+        const Classification through = classify(q, t + R * Vec3(0.5, 0, 0), 1.0);
+        EXPECT_FALSE(through.nappes_apart);
+        EXPECT_FALSE(has_two_parts(through));
+        EXPECT_EQ(part_of(through, top, 1e-3), 0);
+    }
+}
+
 TEST(Fit, AmongTheQuadricsThroughTwoRingsTheFacetsChooseOne) {
     // A hole one facet deep: its two rings of vertices lie on its cylinder and on every
     // quadric of their pencil (the pair of planes through them among them), so the

@@ -163,7 +163,7 @@ TEST(ModelSelection, APlanePairIsNeverChosen) {
     Quadric pair;  // x z = 0
     pair.c[6] = 1;
     const ModelChoice choice = select_model(samples, pair);
-    EXPECT_FALSE(has_two_parts(choice.chosen.type)) << type_name(choice.chosen.type);
+    EXPECT_FALSE(has_two_parts(choice.chosen.shape)) << type_name(choice.chosen.type);
     EXPECT_TRUE(choice.chosen.special);
 }
 

@@ -119,7 +119,7 @@ PartitionScore score_partition(const Part& part, const std::vector<int>& labels,
 int two_part_regions(const Mesh& mesh, const Result& result) {
     int count = 0;
     for (const ProxyResult& p : result.proxies) {
-        if (!has_two_parts(p.type)) continue;
+        if (!has_two_parts(p.shape)) continue;
         PartWeights parts;  // by area
         double total = 0;
         for (std::size_t t = 0; t < result.face_labels.size(); ++t) {

@@ -146,6 +146,7 @@ Classification classify(const Quadric& f_unit, const Vec3& region_center, double
                                                                                       : QuadricType::elliptic_cone;
             out.semi_axes = Vec3(std::sqrt(-lambda[2] / lambda[0]), std::sqrt(-lambda[2] / lambda[1]), 1.0);
             out.half_angle = std::atan(std::sqrt(-lambda[2] / (0.5 * (lambda[0] + lambda[1]))));
+            out.nappes_apart = nappes_apart(center, Vec3::Zero(), 1);  // the local frame
             return finish(center);
         }
         for (int i = 0; i < 3; ++i) out.semi_axes[i] = semi(i, k);
@@ -259,9 +260,15 @@ Classification change_frame(const Classification& c, double scale, const Vec3& t
     return out;
 }
 
-bool has_two_parts(QuadricType type) {
+bool nappes_apart(const Vec3& apex, const Vec3& region_center, double region_radius) {
+    return (apex - region_center).norm() > 2 * region_radius;
+}
+
+bool has_two_parts(const Classification& c) {
+    const QuadricType type = c.type;
     return type == QuadricType::hyperboloid_two_sheets || type == QuadricType::hyperbolic_cylinder ||
-           type == QuadricType::intersecting_planes || type == QuadricType::parallel_planes;
+           type == QuadricType::intersecting_planes || type == QuadricType::parallel_planes ||
+           ((type == QuadricType::cone || type == QuadricType::elliptic_cone) && c.nappes_apart);
 }
 
 int part_of(const Classification& c, const Vec3& p, double margin) {
@@ -271,6 +278,11 @@ int part_of(const Classification& c, const Vec3& p, double margin) {
         case QuadricType::hyperboloid_two_sheets: side = separation = y[2]; break;
         case QuadricType::hyperbolic_cylinder: side = separation = y[0]; break;
         case QuadricType::parallel_planes: side = separation = y[2]; break;
+        case QuadricType::cone:
+        case QuadricType::elliptic_cone:
+            if (!c.nappes_apart) return 0;
+            side = separation = y[2];
+            break;
         case QuadricType::intersecting_planes: side = y[0] * y[1], separation = std::hypot(y[0], y[1]); break;
         default: return 0;
     }

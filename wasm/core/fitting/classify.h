@@ -64,6 +64,9 @@ struct Classification {
     Vec3 semi_axes = Vec3::Zero();
     double radius = 0;      // sphere, cylinder
     double half_angle = 0;  // cone, radians
+    // Cones: the apex lies beyond the region, so the two nappes, which meet only there,
+    // are two separate parts of the surface where the region is (nappes_apart).
+    bool nappes_apart = false;
 
     Vec3 axis() const { return rotation.col(2); }
 };
@@ -74,11 +77,20 @@ Classification classify(const Quadric& f, const Vec3& center, double radius, con
 // The same classification in coordinates q = scale * p + translation.
 Classification change_frame(const Classification& c, double scale, const Vec3& translation);
 
-// The quadrics with two separate parts (sheets, branches or planes).
-bool has_two_parts(QuadricType type);
+// Whether a cone's apex lies beyond a region (centroid, RMS radius): farther from its
+// centroid than twice its RMS radius, past the rim of any compact region. There the two
+// nappes are apart: a flat cone under noise holds both faces of a plate, one per nappe, as
+// a pair of parallel planes would. A region through its apex (a free-form region's
+// elliptic cone) is one piece of surface.
+bool nappes_apart(const Vec3& apex, const Vec3& region_center, double region_radius);
+
+// The quadrics with two separate parts where their region is (sheets, branches, planes,
+// the nappes of a cone whose apex lies beyond the region).
+bool has_two_parts(const Classification& c);
 // For those, which part a point lies on (+1 or -1), or 0 when it lies within `margin` of
 // where the parts separate (the mid-plane of parallel planes or of two sheets, the common
-// line of intersecting planes, the gap between branches).
+// line of intersecting planes, the gap between branches, the plane through a cone's apex
+// across its axis).
 int part_of(const Classification& c, const Vec3& p, double margin = 0);
 
 // A region lies on two parts of its quadric when, beyond the margin, both parts hold at

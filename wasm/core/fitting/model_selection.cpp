@@ -96,10 +96,13 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
 
     auto add_special = [&](const std::optional<SpecialFit>& fit) {
         if (!fit || !std::isfinite(fit->rms)) return;
+        Classification shape = fit->shape;
+        if (shape.type == QuadricType::cone) shape.nappes_apart = nappes_apart(shape.center, center, radius);
         // Every candidate measured alike (Taubin's distance is below the true one, more so
         // away from the surface): a fair contest.
-        candidates.push_back({fit->shape.type, fit->quadric, fit->shape, taubin_rms(s, fit->quadric),
-                              degrees_of_freedom(fit->shape.type), true});
+        const double rms = taubin_rms(s, fit->quadric);
+        if (has_two_parts(shape) && on_two_parts(shape, s, 2 * rms)) return;
+        candidates.push_back({shape.type, fit->quadric, shape, rms, degrees_of_freedom(shape.type), true});
     };
     // Every type's fit, or, without rivals, only the imposed type's.
     const bool every_type = options.rivals || options.imposed == ImposedType::none;
@@ -154,7 +157,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
             g.parameters = degrees_of_freedom(g.type);
             const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
             const bool usable = g.type != QuadricType::empty && !pair &&
-                                !(has_two_parts(g.type) && on_two_parts(g.shape, s, 2 * g.rms));
+                                !(has_two_parts(g.shape) && on_two_parts(g.shape, s, 2 * g.rms));
             if (usable && std::isfinite(g.rms)) candidates.push_back(g);
         }
 

@@ -828,7 +828,7 @@ std::vector<int> Lloyd::faces_on_side(int proxy, int side) const {
 }
 
 Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double margin, int a, int b) const {
-    if (!q.is_plane() && !has_two_parts(c.type)) return {};
+    if (!q.is_plane() && !has_two_parts(c)) return {};
     std::vector<int> faces;
     for (int f = 0; f < model_.face_count(); ++f)
         if (labels_[f] == a || labels_[f] == b) faces.push_back(f);
@@ -837,7 +837,7 @@ Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double marg
 
 Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double margin, const std::vector<int>& faces) const {
     Parts out;
-    if (!q.is_plane() && !has_two_parts(c.type)) return out;
+    if (!q.is_plane() && !has_two_parts(c)) return out;
     for (int f : faces) {
         const int side = side_of(q, f, c, margin);
         if (side == 0) continue;
@@ -984,7 +984,7 @@ void Lloyd::release_minor_parts() {
         // and each region the faces went to must explain its faces about as well as
         // before: its error per unit area within the noise factor of what it was, or
         // within the precision floor.
-        bool kept = !has_two_parts(classify_proxy(i).type);
+        bool kept = !has_two_parts(classify_proxy(i));
         for (int j = 0; j < static_cast<int>(proxies_.size()) && kept; ++j) {
             if (j == i || !changed[j]) continue;
             const Proxy &now = proxies_[j], &was = before.proxies[j];
@@ -1044,7 +1044,7 @@ bool Lloyd::merge_least_cost(const std::function<bool(int, int)>& eligible,
 
 bool Lloyd::merge_cheapest() {
     auto valid = [&](const Union& u, int a, int b, const RegionFaces& faces) {
-        return !has_two_parts(classify_union(u).type) && !faces_both_ways(u.fit.quadric, faces[a], faces[b]);
+        return !has_two_parts(classify_union(u)) && !faces_both_ways(u.fit.quadric, faces[a], faces[b]);
     };
     // Under noise a quadric rounds a sharp crease off within the noise of both faces (an
     // eccentric elliptic cone over two sides of the noisy slotted block), so there its cost
@@ -1087,7 +1087,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         const bool exact = united_error <= u.moments[0] * options_.precision * options_.precision;
         const bool one = within_noise ? as_well_as_apart || within_their_noise
                                       : as_well_as_apart && (exact || within_their_noise);
-        if (one && !has_two_parts(classify_union(u).type))
+        if (one && !has_two_parts(classify_union(u)))
             candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, false});
         else if (vertices_on_one_surface(u, i, j, faces))
             candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, true});
