@@ -65,7 +65,8 @@ struct Classification {
     double radius = 0;      // sphere, cylinder
     double half_angle = 0;  // cone, radians
     // Cones: the apex lies beyond the region, so the two nappes, which meet only there,
-    // are two separate parts of the surface where the region is (nappes_apart).
+    // are two separate parts of the surface where the region is (the test is the
+    // function nappes_apart below).
     bool nappes_apart = false;
 
     Vec3 axis() const { return rotation.col(2); }

@@ -96,6 +96,8 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
 
     auto add_special = [&](const std::optional<SpecialFit>& fit) {
         if (!fit || !std::isfinite(fit->rms)) return;
+        // A geometric fit knows its surface, not the region: where a cone's nappes are
+        // apart is judged here, from the samples, as classify judges it for a quadric.
         Classification shape = fit->shape;
         if (shape.type == QuadricType::cone) shape.nappes_apart = nappes_apart(shape.center, center, radius);
         // Every candidate measured alike (Taubin's distance is below the true one, more so
