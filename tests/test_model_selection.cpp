@@ -319,3 +319,25 @@ TEST(ModelSelection, AParaboloidIsFittedToAPieceOfSphereFromAnAxisFarOff) {
         }
     }
 }
+
+TEST(ModelSelection, UnderNoiseAFewPointsOfANeighbouringFaceDoNotBendTheType) {
+    // A noisy square face (σ 2e-3 along its normal) whose region also holds two rows of its
+    // neighbour's vertices, a plate's rim going down from one edge, 4.5 and 9 σ below: with
+    // them alone they pay for a bent type's parameters. Capped at a few times the region's
+    // noise, they tell of the partition, not of the surface, and the plane is chosen.
+    const double sigma = 2e-3;
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0, sigma);
+    Samples samples;
+    for (int i = 0; i <= 40; ++i)
+        for (int j = 0; j <= 40; ++j) samples.add(Vec3(i / 40.0, j / 40.0, noise(rng)), 1);
+    for (double depth : {4.5 * sigma, 9 * sigma})
+        for (int j = 0; j <= 40; ++j) samples.add(Vec3(1 + noise(rng), j / 40.0, -depth), 1);
+    const Quadric general = fit_taubin(moments_of(samples)).quadric;
+    const ModelChoice uncapped = select_model(samples, general);
+    EXPECT_STRNE(type_name(uncapped.chosen.type), "plane") << "the rim alone bends the type (a cylinder)";
+    samples.noise = 0.9 * sigma;  // the roughness an exact surface leaves under this noise
+    const ModelChoice capped = select_model(samples, general);
+    EXPECT_STREQ(type_name(capped.chosen.type), "plane");
+    EXPECT_GT(std::abs(capped.chosen.shape.axis().normalized().z()), 0.999);
+}

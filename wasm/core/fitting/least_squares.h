@@ -15,6 +15,7 @@ inline Samples thinned(const Samples& s, std::size_t limit) {
     if (s.points.size() <= limit) return s;
     Samples out;
     out.tolerance = s.tolerance;
+    out.noise = s.noise;
     const double stride = double(s.points.size()) / limit;
     for (std::size_t k = 0; k < limit; ++k) {
         const std::size_t i = static_cast<std::size_t>(k * stride);

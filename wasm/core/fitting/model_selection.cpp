@@ -23,6 +23,19 @@ bool on_two_parts(const Classification& c, const Samples& s, double margin) {
     return parts.both(s.total_weight);
 }
 
+// The RMS distance by which candidates compete: Taubin's, each point's capped at
+// kNoiseCap × the samples' noise on a noisy mesh. There a region holding a few faces of
+// its neighbour (a plate's rim, nine σ off its face) paid, with them alone, for a bent
+// type's parameters: the noisy plate assembly's large faces came out as spheres of radius
+// 45 and flat cones, the plane second. Beyond about 3 σ a point tells of the partition,
+// not of the region's surface.
+constexpr double kNoiseCap = 3.5;
+double selection_rms(const Samples& s, const Quadric& q) {
+    if (!(s.noise > 0)) return taubin_rms(s, q);
+    const double a = q.hessian_norm(), cap = kNoiseCap * s.noise;
+    return weighted_rms(s, [&](const Vec3& p) { return std::min(std::abs(taubin_distance(q, a, p)), cap); });
+}
+
 // Whether a candidate is of the imposed type.
 bool of_type(const TypedFit& c, ImposedType type) {
     switch (type) {
@@ -102,7 +115,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         if (shape.type == QuadricType::cone) shape.nappes_apart = nappes_apart(shape.center, center, radius);
         // Every candidate measured alike (Taubin's distance is below the true one, more so
         // away from the surface): a fair contest.
-        const double rms = taubin_rms(s, fit->quadric);
+        const double rms = selection_rms(s, fit->quadric);
         if (has_two_parts(shape) && on_two_parts(shape, s, 2 * rms)) return;
         candidates.push_back({shape.type, fit->quadric, shape, rms, degrees_of_freedom(shape.type), true});
     };
@@ -155,7 +168,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
             g.quadric = normalized(q);
             g.shape = classify(q, center, radius, options.classify);
             g.type = q.is_plane() ? QuadricType::plane : g.shape.type;
-            g.rms = taubin_rms(s, q);
+            g.rms = selection_rms(s, q);
             g.parameters = degrees_of_freedom(g.type);
             const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
             const bool usable = g.type != QuadricType::empty && !pair &&

@@ -20,17 +20,18 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
     return out;
 }
 
-Samples region_samples(const Model& model, const std::vector<int>& faces) {
+Samples region_samples(const Model& model, const std::vector<int>& faces, const std::vector<double>* roughness) {
     Samples out = vertex_samples(model.points, model.triangles, faces);
     std::vector<int> sorted(faces);
     if (!std::is_sorted(sorted.begin(), sorted.end())) std::sort(sorted.begin(), sorted.end());
     const DualGraph& g = model.graph;
     // A median needs no more than a thousand faces, evenly strided.
     const std::size_t stride = sorted.size() / 1024 + 1;
-    std::vector<double> deviation;
+    std::vector<double> deviation, noise;
     deviation.reserve(sorted.size() / stride + 1);
     for (std::size_t i = 0; i < sorted.size(); i += stride) {
         const int f = sorted[i];
+        if (roughness) noise.push_back((*roughness)[f]);
         double largest = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             const int h = g.neighbor[e];
@@ -41,6 +42,10 @@ Samples region_samples(const Model& model, const std::vector<int>& faces) {
         }
         out.midpoint_tolerances.resize(out.edge_midpoints.size(), largest);
         deviation.push_back(largest);
+    }
+    if (!noise.empty()) {
+        std::nth_element(noise.begin(), noise.begin() + noise.size() / 2, noise.end());
+        out.noise = noise[noise.size() / 2];
     }
     if (deviation.empty()) return out;
     const auto middle = deviation.begin() + deviation.size() / 2;

@@ -26,6 +26,10 @@ struct Samples {
     // Per midpoint, the chordal deviation of the face it was taken from (its largest
     // sagitta): how far the midpoint may lie from the surface the vertices are on.
     std::vector<double> midpoint_tolerances;
+    // On a noisy mesh, the region's noise (the median roughness of its faces, about 0.9 σ);
+    // 0 otherwise. Model selection caps each point's distance at a few times this: beyond
+    // it a point tells of a neighbouring face the region holds, not of the region's type.
+    double noise = 0;
     void add(const Vec3& p, double w) {
         points.push_back(p);
         weights.push_back(w);
@@ -42,8 +46,10 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
 // as the tolerance: per face, the largest sagitta (DualGraph) across its edges inside the
 // region (a tessellated cylinder turns across one edge of each face); the median of
 // those over the region's faces (a crease or a few noisy faces do not make it), at most
-// a thousand of them evenly strided.
-Samples region_samples(const Model& model, const std::vector<int>& faces);
+// a thousand of them evenly strided. `roughness` (per face, Features::roughness; given on a
+// noisy mesh only) sets the samples' noise, the median over the same faces.
+Samples region_samples(const Model& model, const std::vector<int>& faces,
+                       const std::vector<double>* roughness = nullptr);
 
 // Σ of the points' moments, each of its weight: what a quadric fit of the points takes.
 inline Moments moments_of(const Samples& s) {

@@ -70,6 +70,7 @@ public:
         state_.settled = lloyd_->settled();
         if (options_.init == Initialization::features) state_.crease = lloyd_->features().crease;
         state_.roughness = std::make_shared<const std::vector<double>>(lloyd_->features().roughness);
+        state_.noisy = median_roughness(*state_.roughness) > options_.precision;
         lloyd_.reset();  // a finished stage's working memory goes (on large meshes, hundreds of MB)
         return false;
     }
@@ -211,7 +212,8 @@ public:
         while (next_ < count && !refitted(next_)) ++next_;
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            const Samples vertices = region_samples(model_, region_faces_[next_]);
+            const Samples vertices =
+                region_samples(model_, region_faces_[next_], state_.noisy ? state_.roughness.get() : nullptr);
             ModelSelectionOptions selection = seams_.selection;
             selection.imposed = imposed(next_);
             try {
@@ -230,7 +232,7 @@ public:
             for (int r = 0; r < count; ++r) may_change_[r] = refitted(r) && imposed(r) == ImposedType::none;
             simplifier_ = std::make_unique<SeamSimplifier>(model_, state_.labels, state_.proxies, state_.choices,
                                                            state_.crease.empty() ? nullptr : &state_.crease,
-                                                           state_.roughness.get(), seams_, &may_change_);
+                                                           state_.roughness.get(), state_.noisy, seams_, &may_change_);
         }
         if (simplifier_->step()) return true;
         simplifier_.reset();

@@ -29,9 +29,10 @@ struct SeamSimplifier::HandOver {
 
 SeamSimplifier::SeamSimplifier(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
                                std::vector<ModelChoice>& choices, const std::vector<char>* crease,
-                               const std::vector<double>* roughness, const SeamOptions& options,
+                               const std::vector<double>* roughness, bool noisy, const SeamOptions& options,
                                const std::vector<char>* may_change)
     : model_(model), labels_(labels), proxies_(proxies), choices_(choices), crease_(crease), roughness_(roughness),
+      selection_roughness_(noisy ? roughness : nullptr),
       may_change_(may_change),
       options_(options),
       regions_(proxies.size()), in_strip_(model.face_count(), 0), vertex_kept_(model.points.size(), 0),
@@ -52,6 +53,10 @@ bool SeamSimplifier::step() {
     return next_ < queue_.size();
 }
 
+Samples SeamSimplifier::samples_of(const std::vector<int>& faces) const {
+    return region_samples(model_, faces, selection_roughness_);
+}
+
 double SeamSimplifier::fraction() const { return queue_.empty() ? 1 : double(next_) / queue_.size(); }
 
 void SeamSimplifier::simplify(int a) {
@@ -69,7 +74,7 @@ void SeamSimplifier::simplify(int a) {
     // A first look at a region without a strip (`rest`), on a few hundred of its vertices:
     // most seams of a free-form surface change no type, and this tells them cheaply.
     auto screen = [&](const std::vector<int>& rest) {
-        return select_model(thinned(region_samples(model_, rest), options_.screening_samples),
+        return select_model(thinned(samples_of(rest), options_.screening_samples),
                             fit_region(moments_of(model_, rest), options_.lloyd.fit).quadric, options_.selection);
     };
     // Whether every vertex of the strip is also one of `rest`.
@@ -135,14 +140,14 @@ void SeamSimplifier::simplify(int a) {
         if (rest.size() < 3) continue;
         const Moments rest_moments = moments_of(model_, rest);
         const ModelChoice simpler =
-            select_model(region_samples(model_, rest), fit_region(rest_moments, options_.lloyd.fit).quadric, options_.selection);
+            select_model(samples_of(rest), fit_region(rest_moments, options_.lloyd.fit).quadric, options_.selection);
         if (simpler.chosen.parameters >= choices_[a].chosen.parameters) continue;
         std::vector<int> grown = regions_[b].faces;
         grown.insert(grown.end(), strip.begin(), strip.end());
         Moments grown_moments = proxies_[b].moments;
         for (int f : strip) add_to(grown_moments, model_.moments[f]);
         const ModelChoice kept =
-            select_model(region_samples(model_, grown), fit_region(grown_moments, options_.lloyd.fit).quadric, options_.selection);
+            select_model(samples_of(grown), fit_region(grown_moments, options_.lloyd.fit).quadric, options_.selection);
         if (kept.chosen.type != choices_[b].chosen.type) continue;
 
         for (int f : strip) labels_[f] = b;
@@ -274,7 +279,7 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
         // fewer parameters: the pair is judged as a whole, below.
         for (int i : {0, 1}) {
             t.moments[i] = moments_of(model_, t.faces[i]);
-            const Samples samples = region_samples(model_, t.faces[i]);
+            const Samples samples = samples_of(t.faces[i]);
             const Quadric general = fit_region(t.moments[i], options_.lloyd.fit).quadric;
             ModelSelectionOptions selection = options_.selection;
             if (i == 0) selection.imposed = ImposedType::plane, selection.rivals = false;
@@ -300,7 +305,7 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
     if (best) {
         ModelSelectionOptions selection = options_.selection;
         selection.imposed = ImposedType::plane;
-        best->choice[0] = select_model(region_samples(model_, best->faces[0]),
+        best->choice[0] = select_model(samples_of(best->faces[0]),
                                        fit_region(best->moments[0], options_.lloyd.fit).quadric, selection);
     }
     return best;

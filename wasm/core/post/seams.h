@@ -48,11 +48,12 @@ struct SeamOptions {
 class SeamSimplifier {
 public:
     // `crease`: per dual-graph link, optional; `roughness`: per face (Features::roughness),
-    // optional (no hand-over without it); `may_change` (per region, optional): the regions
-    // that may give or take faces (all when null).
+    // optional (no hand-over without it); `noisy`: the mesh is (its model selections see
+    // the regions' noise, as the refit's do); `may_change` (per region, optional): the
+    // regions that may give or take faces (all when null).
     SeamSimplifier(const Model& model, std::vector<int>& labels, std::vector<Proxy>& proxies,
                    std::vector<ModelChoice>& choices, const std::vector<char>* crease,
-                   const std::vector<double>* roughness, const SeamOptions& options,
+                   const std::vector<double>* roughness, bool noisy, const SeamOptions& options,
                    const std::vector<char>* may_change = nullptr);
     ~SeamSimplifier();
     bool step();  // false once every region is done
@@ -68,6 +69,7 @@ private:
     void commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice);
     void measure(int r);  // regions_[r].error from evaluator_
     bool may_change(int r) const;
+    Samples samples_of(const std::vector<int>& faces) const;  // what model selection sees
     // Σ A (noise_factor · roughness)² over the faces: the error their noise explains, as
     // the Lloyd stage counts it (Lloyd::noise_energy).
     double noise_energy(const std::vector<int>& faces) const;
@@ -79,6 +81,7 @@ private:
     std::vector<ModelChoice>& choices_;
     const std::vector<char>* crease_;
     const std::vector<double>* roughness_;
+    const std::vector<double>* selection_roughness_;  // roughness_ on a noisy mesh, else null
     const std::vector<char>* may_change_;
     SeamOptions options_;
     FaceErrors evaluator_;
