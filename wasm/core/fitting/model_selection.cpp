@@ -31,9 +31,7 @@ bool on_two_parts(const Classification& c, const Samples& s, double margin) {
 // not of the region's surface.
 constexpr double kNoiseCap = 3.5;
 double selection_rms(const Samples& s, const Quadric& q) {
-    if (!(s.noise > 0)) return taubin_rms(s, q);
-    const double a = q.hessian_norm(), cap = kNoiseCap * s.noise;
-    return weighted_rms(s, [&](const Vec3& p) { return std::min(std::abs(taubin_distance(q, a, p)), cap); });
+    return s.noise > 0 ? taubin_rms(s, q, kNoiseCap * s.noise) : taubin_rms(s, q);
 }
 
 // Whether a candidate is of the imposed type.

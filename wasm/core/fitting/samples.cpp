@@ -54,9 +54,9 @@ Samples region_samples(const Model& model, const std::vector<int>& faces, const 
     return out;
 }
 
-double taubin_rms(const Samples& s, const Quadric& q) {
+double taubin_rms(const Samples& s, const Quadric& q, double cap) {
     const double a = q.hessian_norm();
-    return weighted_rms(s, [&](const Vec3& p) { return taubin_distance(q, a, p); });
+    return weighted_rms(s, [&](const Vec3& p) { return std::min(std::abs(taubin_distance(q, a, p)), cap); });
 }
 
 }  // namespace vqsa

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace vqsa {
@@ -75,7 +76,8 @@ double weighted_rms(const Samples& s, const Distance& distance) {
     return std::sqrt(sum / s.total_weight);
 }
 
-// Weighted RMS of the samples' Taubin distance to q (fitting/distance.h).
-double taubin_rms(const Samples& s, const Quadric& q);
+// Weighted RMS of the samples' Taubin distance to q (fitting/distance.h), each distance
+// capped at `cap`.
+double taubin_rms(const Samples& s, const Quadric& q, double cap = std::numeric_limits<double>::infinity());
 
 }  // namespace vqsa

@@ -531,11 +531,4 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     return out;
 }
 
-double median_roughness(const std::vector<double>& roughness) {
-    if (roughness.empty()) return 0;
-    std::vector<double> sorted = roughness;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    return sorted[sorted.size() / 2];
-}
-
 }  // namespace vqsa

@@ -32,10 +32,6 @@ struct Features {
 
 Features detect_features(const Model& model, const FeatureOptions& options = {});
 
-// The median of the faces' roughness (0 for none): a mesh whose median is above the
-// automatic count's `precision` is noisy everywhere (a scan, a noisy export).
-double median_roughness(const std::vector<double>& roughness);
-
 // The squared error the noise explains on face f, area · roughness², before any factor.
 inline double face_noise(const Model& model, const std::vector<double>& roughness, int f) {
     return model.areas[f] * roughness[f] * roughness[f];

@@ -196,10 +196,11 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
         own.reset(model_, {fit.quadric});
         for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
     }
-    if (!features_.roughness.empty()) {
-        const double median = median_roughness(features_.roughness);
-        noisy_ = median > options_.precision;
-        exact_ = median <= kStoredPrecision;
+    std::vector<double> roughness = features_.roughness;
+    if (!roughness.empty()) {
+        std::nth_element(roughness.begin(), roughness.begin() + roughness.size() / 2, roughness.end());
+        noisy_ = roughness[roughness.size() / 2] > options_.precision;
+        exact_ = roughness[roughness.size() / 2] <= kStoredPrecision;
     }
     initialize();
 }

@@ -172,6 +172,8 @@ public:
     // How far the stage is, in [0, 1] (by proxy count when there is a target).
     double fraction() const;
     const Features& features() const { return features_; }
+    // The mesh's median roughness is above `precision`: noise everywhere.
+    bool noisy() const { return noisy_; }
     const LloydOptions& options() const { return options_; }
 
 private:

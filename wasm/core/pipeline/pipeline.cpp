@@ -70,7 +70,7 @@ public:
         state_.settled = lloyd_->settled();
         if (options_.init == Initialization::features) state_.crease = lloyd_->features().crease;
         state_.roughness = std::make_shared<const std::vector<double>>(lloyd_->features().roughness);
-        state_.noisy = median_roughness(*state_.roughness) > options_.precision;
+        state_.noisy = lloyd_->noisy();
         lloyd_.reset();  // a finished stage's working memory goes (on large meshes, hundreds of MB)
         return false;
     }

@@ -89,8 +89,7 @@ public:
         std::vector<char> crease;  // per dual-graph link, when the Lloyd stage used features
         // Per face, Features::roughness (the noise): the mesh's, shared by the undo states.
         std::shared_ptr<const std::vector<double>> roughness;
-        // The mesh's median roughness is above `precision` (as the Lloyd stage judged): its
-        // regions' model selections see their noise (Samples::noise).
+        // Lloyd::noisy: the regions' model selections see their noise (Samples::noise).
         bool noisy = false;
         double energy = 0;
         StopReason stop_reason = StopReason::none;
