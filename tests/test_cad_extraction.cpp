@@ -231,6 +231,33 @@ TEST(CadExtraction, PiecesOfOneNoisyFaceMergeAtACount) {
     EXPECT_GE(o.accuracy, 0.97);
 }
 
+TEST(CadExtraction, PiecesOfANoisyPlaneMergeAtACountThoughEachBendsToItsNoise) {
+    // The noisy plate assembly at its true count of 39: its rims, a few σ tall, hold no proxy
+    // that pays, so Lloyd spends the spare proxies on pieces of the large faces. Each piece's
+    // quadric bends to its own noise, up to half below the plane's error, so the pieces did
+    // not fit "as well as apart" and stayed: one of the six large faces whole at each of these
+    // seeds (accuracy 0.610 and 0.601). A plane holds their union within their noise.
+    for (std::uint64_t offset : {0, 5}) {
+        const auto [part, o] = corpus_case_at_true_count("plate_assembly", "noisy", offset);
+        EXPECT_GE(o.accuracy, 0.85) << "seed offset " << offset;
+        EXPECT_EQ(o.two_part, 0) << "seed offset " << offset;
+        int large = 0, whole = 0;
+        for (int face = 0; face < static_cast<int>(part.surfaces.size()); ++face) {
+            std::map<int, int> regions;  // region → triangles of this face
+            int triangles = 0;
+            for (std::size_t t = 0; t < part.face.size(); ++t)
+                if (part.face[t] == face) ++regions[o.result.face_labels[t]], ++triangles;
+            if (triangles < static_cast<int>(part.face.size()) / 10) continue;
+            ++large;
+            int most = 0;
+            for (const auto& [region, n] : regions) most = std::max(most, n);
+            whole += most >= 0.9 * triangles;
+        }
+        EXPECT_EQ(large, 6);
+        EXPECT_GE(whole, 5) << "seed offset " << offset;
+    }
+}
+
 TEST(CadExtraction, UnderMoreNoiseThanTheCorpussAFlangeIsStillItsFacesAutomatically) {
     // The corpus's noisy flange with half as much noise again (σ 0.3 % of the diagonal):
     // Taubin's fit to two pieces of a noisy plane is a pair of planes, a quarter to a third

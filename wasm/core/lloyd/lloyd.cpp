@@ -1080,13 +1080,23 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         const Proxy &a = proxies_[i], &b = proxies_[j];
-        const Union u = fit_union({i, j});
-        const double parts = a.area * a.fit_error + b.area * b.fit_error, united_error = u.moments[0] * u.fit.mean_squared;
+        Union u = fit_union({i, j});
+        const double parts = a.area * a.fit_error + b.area * b.fit_error, noise = noise_energy(i) + noise_energy(j);
+        double united_error = u.moments[0] * u.fit.mean_squared;
         const bool as_well_as_apart = united_error <= 1.25 * parts + 1e-12 * u.moments[0];
-        const bool within_their_noise = united_error <= noise_energy(i) + noise_energy(j);
+        const bool within_their_noise = united_error <= noise;
         const bool exact = united_error <= u.moments[0] * options_.precision * options_.precision;
-        const bool one = within_noise ? as_well_as_apart || within_their_noise
-                                      : as_well_as_apart && (exact || within_their_noise);
+        bool one = within_noise ? as_well_as_apart || within_their_noise
+                                : as_well_as_apart && (exact || within_their_noise);
+        // Under noise each piece's quadric bends to its own noise, up to half below a plane's
+        // error (and so does the union's), and fails as_well_as_apart: at a count too, pieces
+        // that a plane holds within their noise are one face (the noisy plate assembly's large
+        // faces, two or three regions each at its count).
+        if (!one && noisy_) {
+            const Fit plane = fit_plane(u.moments);
+            if (u.moments[0] * plane.mean_squared <= noise)
+                u.fit = plane, united_error = u.moments[0] * plane.mean_squared, one = true;
+        }
         if (one && !has_two_parts(classify_union(u)))
             candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, false});
         else if (vertices_on_one_surface(u, i, j, faces))
