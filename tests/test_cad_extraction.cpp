@@ -65,6 +65,28 @@ std::pair<Part, Outcome> corpus_case_at_true_count(const std::string& part_name,
     throw std::invalid_argument("no corpus case " + part_name + " " + variant);
 }
 
+// Of the part's large faces (a tenth of its triangles or more), how many there are and how
+// many one region holds (90 % of their triangles).
+struct WholeFaces {
+    int large = 0;
+    int whole = 0;
+};
+WholeFaces whole_large_faces(const Part& part, const std::vector<int>& labels) {
+    WholeFaces out;
+    for (int face = 0; face < static_cast<int>(part.surfaces.size()); ++face) {
+        std::map<int, int> regions;  // region → triangles of this face
+        int triangles = 0;
+        for (std::size_t t = 0; t < part.face.size(); ++t)
+            if (part.face[t] == face) ++regions[labels[t]], ++triangles;
+        if (triangles < static_cast<int>(part.face.size()) / 10) continue;
+        ++out.large;
+        int most = 0;
+        for (const auto& [region, n] : regions) most = std::max(most, n);
+        out.whole += most >= 0.9 * triangles;
+    }
+    return out;
+}
+
 // Accuracy ≥ 0.97 on average and ≥ 0.90 on every mesh, no two-part region.
 void expect_corpus_scores(const std::vector<Outcome>& runs, const std::vector<CorpusCase>& corpus) {
     double sum = 0;
@@ -241,20 +263,25 @@ TEST(CadExtraction, PiecesOfANoisyPlaneMergeAtACountThoughEachBendsToItsNoise) {
         const auto [part, o] = corpus_case_at_true_count("plate_assembly", "noisy", offset);
         EXPECT_GE(o.accuracy, 0.85) << "seed offset " << offset;
         EXPECT_EQ(o.two_part, 0) << "seed offset " << offset;
-        int large = 0, whole = 0;
-        for (int face = 0; face < static_cast<int>(part.surfaces.size()); ++face) {
-            std::map<int, int> regions;  // region → triangles of this face
-            int triangles = 0;
-            for (std::size_t t = 0; t < part.face.size(); ++t)
-                if (part.face[t] == face) ++regions[o.result.face_labels[t]], ++triangles;
-            if (triangles < static_cast<int>(part.face.size()) / 10) continue;
-            ++large;
-            int most = 0;
-            for (const auto& [region, n] : regions) most = std::max(most, n);
-            whole += most >= 0.9 * triangles;
-        }
-        EXPECT_EQ(large, 6);
-        EXPECT_GE(whole, 5) << "seed offset " << offset;
+        const WholeFaces faces = whole_large_faces(part, o.result.face_labels);
+        EXPECT_EQ(faces.large, 6);
+        EXPECT_GE(faces.whole, 5) << "seed offset " << offset;
+    }
+}
+
+TEST(CadExtraction, UnderNoiseAHandOverDoesNotCarryARegionAcrossACrease) {
+    // The seam step's hand-over (a region's far half made a plane, local Lloyd settling the
+    // rest) is for tangent seams; local Lloyd could carry the other region across a crease,
+    // over a second large face of the noisy plate assembly (2 242 faces to 3 682), and such a
+    // trial, chosen, left a large face in two regions (automatic at this seed: 0.888, five of
+    // the six large faces whole).
+    for (const CorpusCase& c : cad_corpus({"plate_assembly"})) {
+        if (c.variant != "noisy") continue;
+        const Part part = make_part(c.part, c.options);
+        const Outcome automatic = run(part, counted(0, c.options.seed + 3));
+        EXPECT_GE(automatic.accuracy, 0.93);
+        EXPECT_EQ(automatic.two_part, 0);
+        EXPECT_EQ(whole_large_faces(part, automatic.result.face_labels).whole, 6);
     }
 }
 

@@ -176,6 +176,21 @@ void SeamSimplifier::simplify(int a) {
     }
 }
 
+bool SeamSimplifier::reached_without_creases(int r, const std::vector<int>& before, std::size_t faces) {
+    if (!crease_) return true;
+    const DualGraph& g = model_.graph;
+    std::vector<int> reached;
+    for (int f : before)
+        if (labels_[f] == r) depth_[f] = 0, reached.push_back(f);
+    for (std::size_t k = 0; k < reached.size(); ++k)
+        for (int e = g.begin(reached[k]); e < g.end(reached[k]); ++e) {
+            const int h = g.neighbor[e];
+            if (labels_[h] == r && depth_[h] < 0 && !(*crease_)[e]) depth_[h] = 0, reached.push_back(h);
+        }
+    for (int f : reached) depth_[f] = -1;
+    return reached.size() == faces;
+}
+
 void SeamSimplifier::commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice) {
     Proxy& p = proxies_[r];
     p.moments = moments;
@@ -272,8 +287,12 @@ std::optional<SeamSimplifier::HandOver> SeamSimplifier::hand_over(int a, int b) 
         t.region[0] = a, t.region[1] = b;
         for (const std::vector<int>* region : {&before_a, &before_b})
             for (int f : *region) t.faces[labels_[f] == a ? 0 : 1].push_back(f);
+        // A hand-over moves faces across a tangent seam; local Lloyd may carry b across a
+        // crease instead (on the noisy plate assembly, b over both faces of a plate: an
+        // elliptic paraboloid thin enough to wrap it, one part, which no validity test sees).
+        const bool across_a_crease = !reached_without_creases(b, before_b, t.faces[1].size());
         restore();
-        if (t.faces[0].size() < 3 || t.faces[1].size() < 3) continue;
+        if (across_a_crease || t.faces[0].size() < 3 || t.faces[1].size() < 3) continue;
         // a is the plane (no type has fewer parameters, so the data's choice would be the
         // plane or give way to it); b is the data's choice, or the imposed type where that has
         // fewer parameters: the pair is judged as a whole, below.

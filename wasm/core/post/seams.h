@@ -65,6 +65,9 @@ private:
     // left as it was).
     struct HandOver;
     std::optional<HandOver> hand_over(int a, int b);
+    // Whether all `faces` faces labelled r are reached from those of `before` still labelled
+    // r, across links that are no crease, without leaving r.
+    bool reached_without_creases(int r, const std::vector<int>& before, std::size_t faces);
     // Region r becomes these faces, of these moments, typed as `choice` says.
     void commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice);
     void measure(int r);  // regions_[r].error from evaluator_
