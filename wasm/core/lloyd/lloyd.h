@@ -267,6 +267,7 @@ private:
     // `within_noise`, within their noise). At a count the user chose, both: the noise alone
     // must not take away a face it blurs (a thin plate's side), nor fitting as well as apart
     // join two pieces of a free-form surface (which neither precision nor noise explains).
+    // Under noise, also pieces that the union's plane holds within their noise, as that plane.
     // `merged`, if given, receives the pair merged. Pairs rejected from this very partition
     // (rejected_merges_) are not merged again.
     bool merge_same_surface(bool within_noise = true, std::pair<int, int>* merged = nullptr);

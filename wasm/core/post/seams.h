@@ -65,8 +65,8 @@ private:
     // left as it was).
     struct HandOver;
     std::optional<HandOver> hand_over(int a, int b);
-    // Whether all `faces` faces labelled r are reached from those of `before` still labelled
-    // r, across links that are no crease, without leaving r.
+    // Whether the faces labelled r (`faces` of them) are all reached from those of `before`
+    // still labelled r, across links that are no crease, without leaving r.
     bool reached_without_creases(int r, const std::vector<int>& before, std::size_t faces);
     // Region r becomes these faces, of these moments, typed as `choice` says.
     void commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice);
