@@ -65,24 +65,25 @@ std::pair<Part, Outcome> corpus_case_at_true_count(const std::string& part_name,
     throw std::invalid_argument("no corpus case " + part_name + " " + variant);
 }
 
-// Of the part's large faces (a tenth of its triangles or more), how many there are and how
-// many one region holds (90 % of their triangles).
+// Of the part's large faces (at least `large` of its triangles), how many there are and how
+// many one region holds (at least `whole` of their triangles).
 struct WholeFaces {
     int large = 0;
     int whole = 0;
 };
-WholeFaces whole_large_faces(const Part& part, const std::vector<int>& labels) {
+WholeFaces whole_large_faces(const Part& part, const std::vector<int>& labels, double large = 0.1,
+                             double whole = 0.9) {
     WholeFaces out;
     for (int face = 0; face < static_cast<int>(part.surfaces.size()); ++face) {
         std::map<int, int> regions;  // region → triangles of this face
         int triangles = 0;
         for (std::size_t t = 0; t < part.face.size(); ++t)
             if (part.face[t] == face) ++regions[labels[t]], ++triangles;
-        if (triangles < static_cast<int>(part.face.size()) / 10) continue;
+        if (triangles < large * static_cast<double>(part.face.size())) continue;
         ++out.large;
         int most = 0;
         for (const auto& [region, n] : regions) most = std::max(most, n);
-        out.whole += most >= 0.9 * triangles;
+        out.whole += most >= whole * triangles;
     }
     return out;
 }
@@ -240,16 +241,9 @@ TEST(CadExtraction, PiecesOfOneNoisyFaceMergeAtACount) {
     // (accuracy 0.956). Two pieces whose union fits as well as they do apart, within the
     // noise of both, are one surface at a count too: every large face is one region.
     const auto [part, o] = corpus_case_at_true_count("thin_plate", "noisy");
-    for (int face = 0; face < static_cast<int>(part.surfaces.size()); ++face) {
-        std::map<int, int> regions;  // region → triangles of this face
-        int triangles = 0;
-        for (std::size_t t = 0; t < part.face.size(); ++t)
-            if (part.face[t] == face) ++regions[o.result.face_labels[t]], ++triangles;
-        if (triangles < static_cast<int>(part.face.size()) / 4) continue;  // a side
-        int most = 0;
-        for (const auto& [region, n] : regions) most = std::max(most, n);
-        EXPECT_GE(most, 0.99 * triangles) << "face " << face << ": " << regions.size() << " regions";
-    }
+    const WholeFaces faces = whole_large_faces(part, o.result.face_labels, 0.25, 0.99);  // not the sides
+    EXPECT_EQ(faces.large, 2);
+    EXPECT_EQ(faces.whole, faces.large);
     EXPECT_GE(o.accuracy, 0.97);
 }
 
