@@ -32,6 +32,20 @@ private:
     SplitMix64 rng_;
 };
 
+// Every vertex moved along its normal (of the faces round it, by area) by a Gaussian of
+// σ = `relative` × the bounding-box diagonal, drawn from `random`.
+void displace_along_normals(Mesh& mesh, double relative, Random& random) {
+    std::vector<Vec3> normal(mesh.vertices.size(), Vec3::Zero());
+    for (const Triangle& t : mesh.triangles) {
+        const Vec3& a = mesh.vertices[t[0]];
+        const Vec3 n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
+        for (int v : t) normal[v] += n;
+    }
+    const double sigma = relative * bounding_box(mesh).diagonal();
+    for (std::size_t v = 0; v < normal.size(); ++v)
+        if (normal[v].norm() > 0) mesh.vertices[v] += sigma * random.normal() * normal[v].normalized();
+}
+
 // base^n by multiplication: exact for 1.5^n up to n = 33, whatever the platform's pow.
 double power(double base, int n) {
     double p = 1;
@@ -219,17 +233,7 @@ Part PartBuilder::finish(const std::string& name) {
     part.surfaces = surfaces_;
     orient(part.mesh);
 
-    if (options_.noise > 0) {
-        std::vector<Vec3> normal(part.mesh.vertices.size(), Vec3::Zero());
-        for (const Triangle& t : part.mesh.triangles) {
-            const Vec3& a = part.mesh.vertices[t[0]];
-            const Vec3 n = (part.mesh.vertices[t[1]] - a).cross(part.mesh.vertices[t[2]] - a);
-            for (int v : t) normal[v] += n;
-        }
-        const double sigma = options_.noise * bounding_box(part.mesh).diagonal();
-        for (std::size_t v = 0; v < normal.size(); ++v)
-            if (normal[v].norm() > 0) part.mesh.vertices[v] += sigma * random_.normal() * normal[v].normalized();
-    }
+    if (options_.noise > 0) displace_along_normals(part.mesh, options_.noise, random_);
     if (options_.random_pose) {
         const Eigen::Matrix3d R = random_rotation(random_);
         const Vec3 t(random_.normal(), random_.normal(), random_.normal());
@@ -930,6 +934,11 @@ std::vector<std::string> part_names() {
     names.push_back("hex_nut");
     names.push_back("chamfered_box");
     return names;
+}
+
+void add_normal_noise(Mesh& mesh, double relative, std::uint64_t seed) {
+    Random random(seed);
+    displace_along_normals(mesh, relative, random);
 }
 
 Part make_part(const std::string& name, const PartOptions& options) {

@@ -53,4 +53,8 @@ std::vector<std::string> corpus_part_names();
 // Throws std::invalid_argument for an unknown name.
 Part make_part(const std::string& name, const PartOptions& options = {});
 
+// Gaussian noise along the vertex normals, σ = `relative` × the bounding-box diagonal, as
+// the parts' noisy variants have it: for other meshes (a shared CAD export made noisy).
+void add_normal_noise(Mesh& mesh, double relative, std::uint64_t seed);
+
 }  // namespace vqsa

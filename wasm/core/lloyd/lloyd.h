@@ -111,7 +111,8 @@ void refit_regions(const Model& model, const std::vector<int>& labels, const Llo
 struct ChartFaces {
     const std::vector<int>& chart;
     const std::vector<std::vector<int>>& faces;
-    // Per face: whether a flood from it can leave it (not every link a crease).
+    // Per face: whether a flood from it reaches min_quadric_faces faces or more without
+    // crossing a crease.
     const std::vector<char>& seedable;
 };
 
