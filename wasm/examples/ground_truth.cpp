@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 namespace vqsa {
@@ -134,6 +135,19 @@ int two_part_regions(const Mesh& mesh, const Result& result) {
         count += parts.both(total, 0.01);
     }
     return count;
+}
+
+double area_within_one_chart(const Model& model, const std::vector<int>& chart, const std::vector<int>& labels,
+                             int regions) {
+    std::vector<std::map<int, double>> area(regions);
+    for (int f = 0; f < model.face_count(); ++f) area[labels[f]][chart[f]] += model.areas[f];
+    double within = 0;
+    for (const auto& by_chart : area) {
+        double largest = 0;
+        for (const auto& [c, a] : by_chart) largest = std::max(largest, a);
+        within += largest;
+    }
+    return model.total_area > 0 ? within / model.total_area : 1;
 }
 
 }  // namespace vqsa

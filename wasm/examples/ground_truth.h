@@ -4,6 +4,7 @@
 
 #include "cad_parts.h"
 #include "fitting/samples.h"
+#include "geometry/model.h"
 #include "pipeline/result.h"
 
 #include <string>
@@ -31,6 +32,11 @@ std::vector<CorpusCase> cad_corpus(const std::vector<std::string>& parts = corpu
 
 // `labels`: region of every kept triangle of part.mesh; `regions`: how many there are.
 PartitionScore score_partition(const Part& part, const std::vector<int>& labels, int regions);
+
+// The share of the area lying in its region's largest chart (`chart`: per face, of the same
+// mesh's faces, such as a clean export's crease charts): 1 when no region crosses a chart.
+double area_within_one_chart(const Model& model, const std::vector<int>& chart, const std::vector<int>& labels,
+                             int regions);
 
 // Regions of a result whose reported type has two parts and whose faces lie on both
 // (each part holding 1 % of the region's area and three of its faces, as PartWeights

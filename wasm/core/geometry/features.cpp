@@ -58,10 +58,15 @@ std::vector<Vec3> face_normals(const Model& model) {
 }
 
 // The noise level: the median distance of a vertex from the mean of its neighbours, along
-// the normal, over vertices whose faces turn by less than the crease angle (on a coarse
-// CAD tessellation most vertices sit on edges, and their deviation is no noise). 0 when
-// too few vertices are smooth to tell.
-double noise_level(const Model& model, const std::vector<Vec3>& normal, double crease_angle) {
+// the normal. `smooth`: over vertices whose faces turn by less than the crease angle (on a
+// coarse CAD tessellation most vertices sit on edges, and their deviation is no noise), 0
+// when too few are smooth to tell; `all`: over every vertex (noise of the faces' own width
+// turns every vertex's faces by more than the crease angle, and leaves none smooth).
+struct NoiseLevels {
+    double smooth = 0, all = 0;
+};
+
+NoiseLevels noise_levels(const Model& model, const std::vector<Vec3>& normal, double crease_angle) {
     const int n = model.face_count();
     std::vector<Vec3> vertex_normal(model.points.size(), Vec3::Zero()), neighbours(model.points.size(), Vec3::Zero());
     std::vector<int> neighbour_count(model.points.size(), 0);
@@ -81,13 +86,20 @@ double noise_level(const Model& model, const std::vector<Vec3>& normal, double c
             if (lowest[v].squaredNorm() == 0) lowest[v] = normal[f];
             else if (normal[f].dot(lowest[v]) < smooth_cos) smooth[v] = 0;
         }
-    std::vector<double> deviations;
-    for (std::size_t v = 0; v < model.points.size(); ++v)
-        if (smooth[v] && neighbour_count[v] > 0 && vertex_normal[v].norm() > 0)
-            deviations.push_back(std::abs((model.points[v] - neighbours[v] / neighbour_count[v]).dot(vertex_normal[v].normalized())));
-    if (deviations.size() * 10 < model.points.size()) return 0;
-    std::nth_element(deviations.begin(), deviations.begin() + deviations.size() / 2, deviations.end());
-    return deviations[deviations.size() / 2];
+    std::vector<double> smooth_deviations, deviations;
+    for (std::size_t v = 0; v < model.points.size(); ++v) {
+        if (neighbour_count[v] == 0 || !(vertex_normal[v].norm() > 0)) continue;
+        deviations.push_back(std::abs((model.points[v] - neighbours[v] / neighbour_count[v]).dot(vertex_normal[v].normalized())));
+        if (smooth[v]) smooth_deviations.push_back(deviations.back());
+    }
+    auto median = [](std::vector<double>& x) {
+        std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+        return x[x.size() / 2];
+    };
+    NoiseLevels levels;
+    if (!deviations.empty()) levels.all = median(deviations);
+    if (smooth_deviations.size() * 10 >= model.points.size() && !smooth_deviations.empty()) levels.smooth = median(smooth_deviations);
+    return levels;
 }
 
 // A face's smallest altitude: across its narrowest width.
@@ -120,6 +132,50 @@ std::vector<Vec3> filter_normals(const DualGraph& g, std::vector<Vec3> normal, c
         normal.swap(next);
     }
     return normal;
+}
+
+// Per face, the mean normal (by area) of the most consistent patch among those centred
+// within `rings` dual rings of it (a patch: the faces within `rings` of its centre; its
+// consistency: the length of its faces' mean unit normal), after Zhang et al. 2015,
+// "Guided mesh normal filtering": near a crease that patch lies on the face's own side.
+// `patch_faces`: per face, the faces of the patch centred on it.
+std::vector<Vec3> guidance_normals(const DualGraph& g, const std::vector<Vec3>& normal, const std::vector<double>& area,
+                                   int rings, std::vector<int>& patch_faces) {
+    const int n = static_cast<int>(normal.size());
+    std::vector<Vec3> mean(n);
+    std::vector<double> spread(n);
+    std::vector<int> stamp(n, -1), ring;
+    auto gather = [&](int centre) {
+        ring.assign(1, centre);
+        stamp[centre] = centre;
+        for (int depth = 0, begin = 0; depth < rings; ++depth) {
+            const int end = static_cast<int>(ring.size());
+            for (int i = begin; i < end; ++i)
+                for (int e = g.begin(ring[i]); e < g.end(ring[i]); ++e)
+                    if (stamp[g.neighbor[e]] != centre) stamp[g.neighbor[e]] = centre, ring.push_back(g.neighbor[e]);
+            begin = end;
+        }
+    };
+    patch_faces.assign(n, 1);
+    for (int c = 0; c < n; ++c) {
+        gather(c);
+        patch_faces[c] = static_cast<int>(ring.size());
+        Vec3 sum = Vec3::Zero();
+        double total = 0;
+        for (int f : ring) sum += area[f] * normal[f], total += area[f];
+        mean[c] = sum.norm() > 0 ? Vec3(sum.normalized()) : normal[c];
+        spread[c] = total > 0 ? 1 - sum.norm() / total : 1;
+    }
+    std::fill(stamp.begin(), stamp.end(), -1);
+    std::vector<Vec3> guidance(n);
+    for (int f = 0; f < n; ++f) {
+        gather(f);
+        int best = f;
+        for (int c : ring)
+            if (spread[c] < spread[best] || (spread[c] == spread[best] && c < best)) best = c;
+        guidance[f] = mean[best];
+    }
+    return guidance;
 }
 
 // Creases: dual links whose (filtered) normals differ by more than the crease angle.
@@ -332,6 +388,17 @@ std::vector<double> chart_roughness(const VertexDeviations& deviations, int char
     return roughness;
 }
 
+// Whether faces f and h lie in one plane to the stored precision, which no noise leaves.
+bool exactly_coplanar(const Model& model, const std::vector<Vec3>& normal, int f, int h) {
+    auto off_plane = [&](int a, int b) {  // b's far vertex from a's plane
+        double d = 0;
+        for (int v : model.triangles[b]) d = std::max(d, std::abs((model.points[v] - model.points[model.triangles[a][0]]).dot(normal[a])));
+        return d;
+    };
+    return normal[f].squaredNorm() > 0 && normal[h].squaredNorm() > 0 && off_plane(f, h) <= kStoredPrecision &&
+           off_plane(h, f) <= kStoredPrecision;
+}
+
 // Per chart, whether its tessellation is exact: half its faces or more lie in one plane
 // with a neighbour of the chart, to the stored precision, which no noise leaves (a
 // coarse CAD export's faces are two triangles or a fan each). There, a vertex's deviation
@@ -341,23 +408,14 @@ std::vector<char> exact_charts(const Model& model, const std::vector<Vec3>& norm
     const DualGraph& g = model.graph;
     const int n = model.face_count();
     std::vector<int> faces(features.chart_count, 0), coplanar(features.chart_count, 0);
-    auto off_plane = [&](int f, int h) {  // h's far vertex from f's plane
-        const Triangle& t = model.triangles[h];
-        double d = 0;
-        for (int v : t) d = std::max(d, std::abs((model.points[v] - model.points[model.triangles[f][0]]).dot(normal[f])));
-        return d;
-    };
     for (int f = 0; f < n; ++f) {
         const int c = features.chart[f];
         ++faces[c];
-        for (int e = g.begin(f); e < g.end(f); ++e) {
-            const int h = g.neighbor[e];
-            if (features.chart[h] == c && normal[f].squaredNorm() > 0 && normal[h].squaredNorm() > 0 &&
-                off_plane(f, h) <= kStoredPrecision && off_plane(h, f) <= kStoredPrecision) {
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            if (features.chart[g.neighbor[e]] == c && exactly_coplanar(model, normal, f, g.neighbor[e])) {
                 ++coplanar[c];
                 break;
             }
-        }
     }
     std::vector<char> exact(features.chart_count);
     for (int c = 0; c < features.chart_count; ++c) exact[c] = faces[c] > 0 && 2 * coplanar[c] >= faces[c];
@@ -440,16 +498,50 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
 
     // Noise turns the normals of faces not much larger than it at random: such faces
     // make no creases, and their normals are filtered harder.
-    const double noise = noise_level(model, raw, options.crease_angle);
+    const NoiseLevels levels = noise_levels(model, raw, options.crease_angle);
+    double noise = levels.smooth;
+    std::vector<double> altitude(n);
+    for (int f = 0; f < n; ++f) altitude[f] = narrowest_width(model, f);
+    // Noise of the faces' own width (a finely meshed scan) turns every face at random, by
+    // more than the filter's range, and no vertex is smooth: the smooth vertices' noise
+    // reads low or nothing, and the filter, which weighs neighbours by how close their
+    // normals are, weighs none. Where most neighbouring faces differ by more than the
+    // filter's range and the tessellation is no exact one, the noise is that of all
+    // vertices, and each face starts from the mean normal of its most consistent patch,
+    // wide enough that the differences between such means stay well inside the range.
+    auto median = [](std::vector<double> x) {
+        std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+        return x.empty() ? 0.0 : x[x.size() / 2];
+    };
+    std::vector<double> link_angle;
+    int coplanar = 0;
+    for (int f = 0; f < n; ++f) {
+        bool in_plane = false;
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            if (f < g.neighbor[e]) link_angle.push_back(turn(g, raw, f, e));
+            in_plane = in_plane || exactly_coplanar(model, raw, f, g.neighbor[e]);
+        }
+        coplanar += in_plane;
+    }
+    int rings = 0;
+    if (2 * coplanar < n && median(link_angle) > options.filter_range) {
+        noise = std::max(noise, levels.all);
+        // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
+        const double ratio = 2 * noise / (0.5 * options.filter_range * median(altitude));
+        for (rings = 1; rings < 6 && 1 + 1.5 * rings * (rings + 1) < ratio * ratio; ++rings) {}
+    }
+    std::vector<int> averaged(n, 1);  // faces each face's starting normal averages
+    const std::vector<Vec3> start = rings > 0 ? guidance_normals(g, raw, model.areas, rings, averaged) : raw;
     std::vector<char> reliable(n);
     std::vector<double> range(n);  // the filter's normal difference of half weight, per face
     for (int f = 0; f < n; ++f) {
-        const double altitude = narrowest_width(model, f);
-        reliable[f] = altitude > 3 * noise;
-        // Noise σ tilts a face of altitude h by about 2σ/h: differences that large are noise.
-        range[f] = std::clamp(2 * noise / std::max(altitude, 1e-300), options.filter_range, 0.6);
+        // Noise σ tilts a face of altitude h by about 2σ/h, the mean of k such faces by
+        // 2σ/(h√k): differences that large are noise.
+        const double width = altitude[f] * std::sqrt(static_cast<double>(averaged[f]));
+        reliable[f] = width > 3 * noise;
+        range[f] = std::clamp(2 * noise / std::max(width, 1e-300), options.filter_range, 0.6);
     }
-    out.normals = filter_normals(g, raw, range, options.filter_iterations);
+    out.normals = filter_normals(g, start, range, options.filter_iterations);
     out.crease = find_creases(g, out.normals, options.crease_angle);
     find_charts(g, reliable, out);
     const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
