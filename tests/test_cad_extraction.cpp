@@ -808,7 +808,7 @@ TEST(CadExtraction, ANoisyCoarseExportKeepsItsRegionsBetweenItsCreases) {
     // faces from it, and a hole's quadric took both holes and then a face of the block: at
     // two draws of three a quarter of the area or more lay in regions across creases, among
     // spheres and paraboloids. A seed now needs a crease-free neighbourhood of a surface's
-    // worth of faces (docs/METHOD.md §2).
+    // worth of faces (docs/METHOD.md §4).
     const Mesh clean = read_mesh_file(test::shared_mesh("block.off"));
     const Model model = make_model(clean);
     const Features charts = detect_features(model);
