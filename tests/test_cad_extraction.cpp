@@ -806,9 +806,9 @@ TEST(CadExtraction, ANoisyCoarseExportKeepsItsRegionsBetweenItsCreases) {
     // 1e-4 wide, which the noise turns into chains of faces creased on most sides; a region
     // whose least error (weighted by area) lay on such a sliver flooded only a handful of
     // faces from it, and a hole's quadric took both holes and then a face of the block: at
-    // two draws of three a quarter of the area or more lay in regions across creases, among
-    // spheres and paraboloids. A seed now needs a crease-free neighbourhood of a surface's
-    // worth of faces (docs/METHOD.md §4).
+    // draw 2, 15 % of the area lay in regions across creases (a cone, paraboloids and
+    // hyperboloids among them), and draw 1 ended with 24 regions. A seed now needs a
+    // crease-free neighbourhood of a surface's worth of faces (docs/METHOD.md §4).
     const Mesh clean = read_mesh_file(test::shared_mesh("block.off"));
     const Model model = make_model(clean);
     const Features charts = detect_features(model);
