@@ -57,6 +57,13 @@ std::vector<Vec3> face_normals(const Model& model) {
     return normal;
 }
 
+// The upper median; 0 of none.
+double median(std::vector<double> x) {
+    if (x.empty()) return 0;
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    return x[x.size() / 2];
+}
+
 // The noise level: the median distance of a vertex from the mean of its neighbours, along
 // the normal. `smooth`: over vertices whose faces turn by less than the crease angle (on a
 // coarse CAD tessellation most vertices sit on edges, and their deviation is no noise), 0
@@ -92,13 +99,9 @@ NoiseLevels noise_levels(const Model& model, const std::vector<Vec3>& normal, do
         deviations.push_back(std::abs((model.points[v] - neighbours[v] / neighbour_count[v]).dot(vertex_normal[v].normalized())));
         if (smooth[v]) smooth_deviations.push_back(deviations.back());
     }
-    auto median = [](std::vector<double>& x) {
-        std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
-        return x[x.size() / 2];
-    };
     NoiseLevels levels;
-    if (!deviations.empty()) levels.all = median(deviations);
-    if (smooth_deviations.size() * 10 >= model.points.size() && !smooth_deviations.empty()) levels.smooth = median(smooth_deviations);
+    levels.all = median(std::move(deviations));
+    if (smooth_deviations.size() * 10 >= model.points.size()) levels.smooth = median(std::move(smooth_deviations));
     return levels;
 }
 
@@ -370,11 +373,6 @@ std::vector<double> chart_roughness(const VertexDeviations& deviations, int char
         if (!beside_bend.empty() && !beside_bend[deviations.vertex[i]]) away[deviations.chart[i]].push_back(deviations.magnitude[i]);
     }
     // Charts too small for a median of their own take the whole mesh's.
-    auto median = [](std::vector<double> m) {
-        if (m.empty()) return 0.0;
-        std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
-        return m[m.size() / 2];
-    };
     const double overall = kCalibration * median(deviations.magnitude);
     std::vector<double> roughness(chart_count, overall);
     for (int c = 0; c < chart_count; ++c) {
@@ -509,22 +507,22 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // filter's range and the tessellation is no exact one, the noise is that of all
     // vertices, and each face starts from the mean normal of its most consistent patch,
     // wide enough that the differences between such means stay well inside the range.
-    auto median = [](std::vector<double> x) {
-        std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
-        return x.empty() ? 0.0 : x[x.size() / 2];
-    };
     std::vector<double> link_angle;
-    int coplanar = 0;
-    for (int f = 0; f < n; ++f) {
-        bool in_plane = false;
-        for (int e = g.begin(f); e < g.end(f); ++e) {
+    for (int f = 0; f < n; ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e)
             if (f < g.neighbor[e]) link_angle.push_back(turn(g, raw, f, e));
-            in_plane = in_plane || exactly_coplanar(model, raw, f, g.neighbor[e]);
-        }
-        coplanar += in_plane;
-    }
+    auto exact_tessellation = [&] {
+        int coplanar = 0;
+        for (int f = 0; f < n; ++f)
+            for (int e = g.begin(f); e < g.end(f); ++e)
+                if (exactly_coplanar(model, raw, f, g.neighbor[e])) {
+                    ++coplanar;
+                    break;
+                }
+        return 2 * coplanar >= n;
+    };
     int rings = 0;
-    if (2 * coplanar < n && median(link_angle) > options.filter_range) {
+    if (median(std::move(link_angle)) > options.filter_range && !exact_tessellation()) {
         noise = std::max(noise, levels.all);
         // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
         const double ratio = 2 * noise / (0.5 * options.filter_range * median(altitude));
