@@ -358,13 +358,7 @@ void Lloyd::decide() {
     // count. A split from a partition already split from once has come round in a cycle
     // (the split-off part merged back, Lloyd regrew it: a facet strip beside a tangent
     // plane): the stop's ensure_valid settles it without Lloyd.
-    const std::uint64_t state = partition_hash();
-    if (splits_left_ > 0 && std::find(split_states_.begin(), split_states_.end(), state) == split_states_.end() &&
-        split_invalid()) {
-        --splits_left_;
-        split_states_.push_back(state);
-        return start_operation(Operation::split);
-    }
+    if (split(false)) return start_operation(Operation::split);
     if (finishing_ && target > 0) return finish();
     if (target > 0 && count > target) {
         if (merge_cheapest()) return start_operation(Operation::merge);
@@ -383,6 +377,7 @@ void Lloyd::decide() {
         unpaid_repairs_ = energy_ < best_before_repair_.energy * (1 - options_.convergence) ? 0 : unpaid_repairs_ + 1;
         if (unpaid_repairs_ >= 3) repairs_left_ = 0;
     }
+    const std::uint64_t state = partition_hash();
     if (repairs_left_ > 0 && (target == 0 || count == target) &&
         std::find(repair_states_.begin(), repair_states_.end(), state) == repair_states_.end()) {
         const Stuck found = find_stuck();
@@ -416,6 +411,16 @@ void Lloyd::decide() {
         }
     }
     insert_batch();
+}
+
+bool Lloyd::split(bool plane_pairs) {
+    const std::uint64_t state = partition_hash();
+    if (splits_left_ == 0 || std::find(split_states_.begin(), split_states_.end(), state) != split_states_.end() ||
+        !split_invalid(plane_pairs))
+        return false;
+    --splits_left_;
+    split_states_.push_back(state);
+    return true;
 }
 
 void Lloyd::judge_teleport() {
@@ -529,8 +534,17 @@ bool Lloyd::decide_finish() {
         else if (!(exact_ && energy_ > energy_before_insert_) && ++unpaid_ >= 3)
             finishing_ = true, finish_reason_ = StopReason::no_gain;
     }
-    if (!finishing_ && misfit_charts().empty() && misfit_clusters().empty() && every_region_explained())
+    if (!finishing_ && misfit_charts().empty() && misfit_clusters().empty() && every_region_explained()) {
+        // Explained, but a region may still be two planes its quadric bends between within
+        // their noise (plane_pair): split, and grow on from there. Only now: while growing,
+        // insertions part such regions anyway, and a split restarts both parts from planes
+        // (splitting the rounded block's early regions, growth lost its gain at 18 of 26).
+        if (split(true)) {
+            start_operation(Operation::split);
+            return true;
+        }
         finishing_ = true, finish_reason_ = StopReason::fitted;
+    }
     if (!finishing_) return false;
     finish();
     return true;
@@ -833,16 +847,6 @@ double Lloyd::part_margin(int proxy) const {
     return 2 * std::sqrt(std::max(proxies_[proxy].error, region_noise_[proxy]) / area);
 }
 
-std::vector<int> Lloyd::faces_on_side(int proxy, int side) const {
-    const Quadric& q = proxies_[proxy].quadric;
-    const Classification c = classify_proxy(proxy);
-    const double margin = part_margin(proxy);
-    std::vector<int> faces;
-    for (int f = 0; f < model_.face_count(); ++f)
-        if (labels_[f] == proxy && side_of(q, f, c, margin) == side) faces.push_back(f);
-    return faces;
-}
-
 Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double margin, int a, int b) const {
     if (!q.is_plane() && !has_two_parts(c)) return {};
     std::vector<int> faces;
@@ -860,6 +864,7 @@ Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double marg
         const int k = side > 0 ? 0 : 1;
         out.weight[k] += model_.areas[f];
         ++out.count[k];
+        out.faces[k].push_back(f);
         if (out.best[k] < 0 || errors_[f] < errors_[out.best[k]]) out.best[k] = f;
     }
     return out;
@@ -898,13 +903,81 @@ bool Lloyd::union_on_two_parts(const Union& u, int a, int b) const {
     return on_two_parts(u.fit.quadric, parts(u.fit.quadric, classify_union(u), margin, a, b), area);
 }
 
+bool Lloyd::union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces) const {
+    if (!plane_pairs_split() || u.fit.quadric.is_plane()) return false;
+    std::vector<int> both = faces[a];
+    both.insert(both.end(), faces[b].begin(), faces[b].end());
+    const std::array<double, 2> error = errors_against(u.fit.quadric, a, b, faces);
+    const Parts pair = plane_pair(both, error[0] + error[1]);
+    return pair.both(u.moments[0], options_.split_fraction);
+}
+
+Lloyd::Parts Lloyd::plane_pair(const std::vector<int>& faces, double error) const {
+    // Under noise a quadric bends through a sharp crease within the noise of both faces
+    // (a hyperbolic paraboloid over two sides of a noisy block, 1.3 σ RMS), and its
+    // classification, which tells a pair of planes only from exact coefficients, finds one
+    // surface. The faces tell: their normals fall in two groups a crease apart, and a plane
+    // through each group holds its faces as closely as the quadric holds them all. A curved
+    // surface does not: its normals spread between the groups, and two planes leave its
+    // curvature.
+    Parts out;
+    if (faces.size() < 6) return out;
+    const std::vector<Vec3>& normal = features_.normals;
+    // Two groups by normal (2-means, from the two normals farthest apart about the mean).
+    Vec3 mean = Vec3::Zero();
+    for (int f : faces) mean += model_.areas[f] * normal[f];
+    Vec3 c[2] = {normal[faces[0]], Vec3::Zero()};
+    for (int f : faces)
+        if (normal[f].dot(mean) < c[0].dot(mean)) c[0] = normal[f];
+    c[1] = c[0];
+    for (int f : faces)
+        if (normal[f].dot(c[0]) < c[1].dot(c[0])) c[1] = normal[f];
+    std::vector<char> side(faces.size(), 0);
+    for (int round = 0; round < 8; ++round) {
+        Vec3 sum[2] = {Vec3::Zero(), Vec3::Zero()};
+        bool moved = false;
+        for (std::size_t k = 0; k < faces.size(); ++k) {
+            const int s = normal[faces[k]].dot(c[1]) > normal[faces[k]].dot(c[0]);
+            moved |= s != side[k];
+            side[k] = s;
+            sum[s] += model_.areas[faces[k]] * normal[faces[k]];
+        }
+        if (sum[0].norm() == 0 || sum[1].norm() == 0) return out;
+        c[0] = sum[0].normalized(), c[1] = sum[1].normalized();
+        if (!moved && round > 0) break;
+    }
+    const double cos_crease = std::cos(options_.features.crease_angle * M_PI / 180);
+    if (c[0].dot(c[1]) > cos_crease) return out;
+    // A plane through each group. Each face is held by the nearer plane: a sliver along the
+    // crease may face either way. But the parts are the groups: near where the planes meet
+    // either is near, and by distance the noise would cut a wedge out of a face.
+    Moments group[2] = {};
+    for (std::size_t k = 0; k < faces.size(); ++k) add_to(group[side[k] ? 1 : 0], model_.moments[faces[k]]);
+    if (!(group[0][0] > 0 && group[1][0] > 0)) return out;
+    FaceErrors distance;
+    distance.reset(model_, {fit_plane(group[0]).quadric, fit_plane(group[1]).quadric});
+    double pair_error = 0;
+    for (int f : faces) pair_error += std::min(distance(f, 0), distance(f, 1));
+    const double factor2 = options_.noise_factor * options_.noise_factor;
+    if (pair_error > factor2 * error) return out;
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+        const int f = faces[k], s = side[k];
+        out.weight[s] += model_.areas[f];
+        ++out.count[s];
+        out.faces[s].push_back(f);
+        if (out.best[s] < 0 || distance(f, s) < distance(out.best[s], s)) out.best[s] = f;
+    }
+    return out;
+}
+
 bool Lloyd::absorb(int region, int excluded) {
     // The region's own error is the same for every pair: the cheapest union is the one
     // merge_least_cost finds.
     return merge_least_cost(
         [&](int a, int b) { return (a == region || b == region) && a != excluded && b != excluded; },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
-            return !union_on_two_parts(u, a, b) && one_surface(u.fit.quadric, a, b, faces);
+            return !union_on_two_parts(u, a, b) && one_surface(u.fit.quadric, a, b, faces) &&
+                   !union_on_plane_pair(u, a, b, faces);
         });
 }
 
@@ -917,21 +990,22 @@ void Lloyd::ensure_valid() {
     for (std::size_t round = 0; round < 4 * proxies_.size() + 8; ++round) {
         int chosen = -1;
         Parts chosen_parts;
+        const RegionFaces faces = plane_pairs_split() ? faces_by_region() : RegionFaces{};
         for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
             Parts p;
             // Here a second part must be substantial (5 %, the paper's split threshold): a
             // tessellation's facet strip beside a tangent plane is no face of its own, and
             // the region is reported as one surface all the same (model selection never
             // names a two-part type).
-            if ((chosen < 0 || proxies_[i].error > proxies_[chosen].error) && invalid(i, &p) &&
-                p.both(proxies_[i].area, 0.05))
-                chosen = i, chosen_parts = p;
+            if ((chosen < 0 || proxies_[i].error > proxies_[chosen].error) &&
+                ((invalid(i, &p) && p.both(proxies_[i].area, 0.05)) || on_plane_pair(i, faces, &p)))
+                chosen = i, chosen_parts = std::move(p);
         }
         if (chosen < 0) return;
         const int added = static_cast<int>(proxies_.size());
         // The smaller part leaves: it is the one a neighbour may take.
         const int minor = chosen_parts.weight[0] < chosen_parts.weight[1] ? 0 : 1;
-        const std::vector<int> leaving = faces_on_side(chosen, minor == 0 ? 1 : -1);
+        const std::vector<int>& leaving = chosen_parts.faces[minor];
         add_proxy(chosen_parts.best[minor]);
         for (int f : leaving) labels_[f] = added;
         std::vector<char> changed(proxies_.size(), 0);
@@ -966,7 +1040,7 @@ void Lloyd::release_minor_parts() {
         if (p.count[minor] == 0) continue;
         // Only a strip one facet wide: a column of a ruled band's tessellation lies exactly
         // on a plane, which makes the pair; a compact second part is a shape of its own.
-        const std::vector<int> strip = faces_on_side(i, minor == 0 ? 1 : -1);
+        const std::vector<int>& strip = p.faces[minor];
         std::vector<int> on_minor(model_.face_count(), 0);
         for (int f : strip) on_minor[f] = 1;
         if (!is_strip(model_, on_minor, strip, 0)) continue;
@@ -1013,19 +1087,30 @@ void Lloyd::release_minor_parts() {
 bool Lloyd::invalid(int proxy, Parts* result) const {
     if (proxies_[proxy].faces < options_.min_quadric_faces) return false;
     const Quadric& q = proxies_[proxy].quadric;
-    const Parts p = parts(q, classify_proxy(proxy), part_margin(proxy), proxy, proxy);
-    if (result) *result = p;
-    return on_two_parts(q, p, proxies_[proxy].area);
+    Parts p = parts(q, classify_proxy(proxy), part_margin(proxy), proxy, proxy);
+    const bool two = on_two_parts(q, p, proxies_[proxy].area);
+    if (result) *result = std::move(p);
+    return two;
 }
 
-bool Lloyd::split_invalid() {
+bool Lloyd::on_plane_pair(int proxy, const RegionFaces& faces, Parts* result) const {
+    const Proxy& region = proxies_[proxy];
+    if (!plane_pairs_split() || region.faces < options_.min_quadric_faces || region.quadric.is_plane()) return false;
+    Parts p = plane_pair(faces[proxy], region.error);
+    const bool two = p.both(region.area, options_.split_fraction);
+    if (result) *result = std::move(p);
+    return two;
+}
+
+bool Lloyd::split_invalid(bool plane_pairs) {
     // The invalid region of largest error is split; one per decision, like an insertion.
     int chosen = -1;
     Parts chosen_parts;
+    const RegionFaces faces = plane_pairs && plane_pairs_split() ? faces_by_region() : RegionFaces{};
     for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
         if (chosen >= 0 && proxies_[i].error <= proxies_[chosen].error) continue;
         Parts p;
-        if (invalid(i, &p)) chosen = i, chosen_parts = p;
+        if (plane_pairs ? on_plane_pair(i, faces, &p) : invalid(i, &p)) chosen = i, chosen_parts = std::move(p);
     }
     if (chosen < 0) return false;
     // Each part restarts from a plane through its best face.

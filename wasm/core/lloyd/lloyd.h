@@ -185,9 +185,11 @@ private:
         double energy = 0;
     };
 
-    // How a region's faces divide between the two parts of its quadric, if it has two.
+    // How a region's faces divide between the two parts of its quadric, if it has two (or
+    // between the two planes it lies on: plane_pair).
     struct Parts : PartWeights {  // weights: areas
         int best[2] = {-1, -1};     // face of least error on each part
+        std::vector<int> faces[2];  // the faces on each part
     };
 
     void initialize();
@@ -243,15 +245,28 @@ private:
     Classification classify_union(const Union& u) const;
     // Whether the union of a and b would be an invalid region.
     bool union_on_two_parts(const Union& u, int a, int b) const;
+    // Whether the union lies on a plane_pair.
+    bool union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces) const;
     // Merges the adjacent pair, among those `eligible`, whose union costs least and is
     // `acceptable`.
     bool merge_least_cost(const std::function<bool(int, int)>& eligible,
                           const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable);
     bool invalid(int proxy, Parts* parts = nullptr) const;
+    // Whether regions on a plane_pair are split: with the automatic count, which promises one
+    // region per surface, on a mesh that is not an exact export. On an exact one the creases
+    // are found, a quadric through two planes is fitted as the pair it is, and the facets of
+    // a coarse tessellation lie on two planes about as closely as on their quadric (the
+    // rounded ends of a coarse slot: split, 0.978 → 0.969).
+    bool plane_pairs_split() const { return automatic() && !exact_; }
+    // Whether a region (`faces`: of each region) lies on a plane_pair (plane_pairs_split only).
+    bool on_plane_pair(int proxy, const RegionFaces& faces, Parts* parts) const;
     // At the stop: the faces on a region's second part, too small to split off, to
     // neighbouring regions that explain them as well (see lloyd.cpp).
     void release_minor_parts();
-    bool split_invalid();
+    // Splits the invalid region of largest error (`plane_pairs`: the region on a plane pair).
+    bool split_invalid(bool plane_pairs);
+    // split_invalid within the split budget, and not from a partition split from before.
+    bool split(bool plane_pairs);
     // The adjacent pair whose union fit costs least, if its union is valid.
     bool merge_cheapest();
     // Splits what is still invalid at the end of the stage (see lloyd.cpp).
@@ -262,8 +277,10 @@ private:
     // Which part of q (classified as `c`) a face lies on: ±1, or 0.
     int side_of(const Quadric& q, int face, const Classification& c, double margin) const;
     double part_margin(int proxy) const;
-    // The faces of a region on one part of its quadric (side ±1, as side_of).
-    std::vector<int> faces_on_side(int proxy, int side) const;
+    // The two planes `faces` lie on, meeting at a sharp crease, if they lie on them as
+    // closely as on their quadric (within noise_factor² times `error`, their error against
+    // it); no faces on either part if they do not (see lloyd.cpp).
+    Parts plane_pair(const std::vector<int>& faces, double error) const;
     // Adjacent regions on one surface (their union fits as well as they do apart, or, when
     // `within_noise`, within their noise). At a count the user chose, both: the noise alone
     // must not take away a face it blurs (a thin plate's side), nor fitting as well as apart
