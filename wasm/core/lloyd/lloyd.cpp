@@ -956,16 +956,22 @@ Lloyd::Parts Lloyd::plane_pair(const std::vector<int>& faces, double error) cons
     if (!(group[0][0] > 0 && group[1][0] > 0)) return out;
     FaceErrors distance;
     distance.reset(model_, {fit_plane(group[0]).quadric, fit_plane(group[1]).quadric});
+    std::vector<double> own(faces.size());  // each face's error against its group's plane
     double pair_error = 0;
-    for (int f : faces) pair_error += std::min(distance(f, 0), distance(f, 1));
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+        const double e[2] = {distance(faces[k], 0), distance(faces[k], 1)};
+        own[k] = e[side[k] ? 1 : 0];
+        pair_error += std::min(e[0], e[1]);
+    }
     const double factor2 = options_.noise_factor * options_.noise_factor;
     if (pair_error > factor2 * error) return out;
+    double best[2] = {0, 0};
     for (std::size_t k = 0; k < faces.size(); ++k) {
         const int f = faces[k], s = side[k];
         out.weight[s] += model_.areas[f];
         ++out.count[s];
         out.faces[s].push_back(f);
-        if (out.best[s] < 0 || distance(f, s) < distance(out.best[s], s)) out.best[s] = f;
+        if (out.best[s] < 0 || own[k] < best[s]) out.best[s] = f, best[s] = own[k];
     }
     return out;
 }
