@@ -858,16 +858,21 @@ TEST(CadExtraction, AFinelyMeshedPartUnderNoiseOfItsFacesWidthStaysAFewRegions) 
     // the automatic count grew into them until the iteration cap, 1 400 regions in 96 s.
     // Faces now start from the mean normal of their most consistent patch, wide enough for
     // the noise (docs/METHOD.md §3).
+    // At draw 2 the run then grew to 155 regions and merged back to 68 in 1 713 iterations,
+    // its main cylinder in strips: 601 of 692 finishing merges were undone, most of them for
+    // error that Lloyd left unexplained elsewhere with or without the merge. A merge is now
+    // judged against the same Lloyd stage without it (docs/METHOD.md §7).
     const Mesh clean = read_mesh_file(test::shared_mesh("abc_pipe_junction.stl"));
     const std::size_t clean_regions = test::approximate(clean, counted(0)).proxies.size();
     Mesh noisy = clean;
-    add_normal_noise(noisy, 0.002, 1);
+    add_normal_noise(noisy, 0.002, 2);
     const Model model = make_model(noisy);
     const Features features = detect_features(model);
     EXPECT_LE(features.chart_count, 100);
     const Result r = test::approximate(noisy, counted(0));
     EXPECT_NE(r.stop_reason, StopReason::max_iterations);
-    EXPECT_LE(r.proxies.size(), 2 * clean_regions) << r.proxies.size() << " regions, " << clean_regions << " clean";
+    EXPECT_LE(r.iterations, 1000);
+    EXPECT_LE(2 * r.proxies.size(), 3 * clean_regions) << r.proxies.size() << " regions, " << clean_regions << " clean";
     EXPECT_EQ(two_part_regions(noisy, r), 0);
 }
 

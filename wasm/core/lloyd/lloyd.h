@@ -294,9 +294,11 @@ private:
     double allowance(int proxy) const;
     // Σ over regions of the error beyond their allowance.
     double unexplained() const;
-    // Undoes the last finishing merge if, Lloyd settled, it left more error unexplained
-    // than the noise it was allowed.
-    void undo_unpaid_merge();
+    // Judges the last finishing merge once Lloyd has settled around it: it stands if it
+    // left no more error unexplained than before it (or than the same Lloyd stage leaves
+    // without it), plus the noise of its two regions; else it is undone. True when that
+    // stage without it must run first (the partition is then the one before the merge).
+    bool judge_merge();
     // Below a target count: judges the last insertion, then whether insertions have stopped
     // paying with every region explained.
     bool fitted_below_target();
@@ -429,9 +431,14 @@ private:
         Snapshot before;
         std::uint64_t state = 0;  // partition_hash() of `before`
         std::pair<int, int> pair{-1, -1};
-        double allowed = 0;  // unexplained() before it, plus the pair's noise
+        double unexplained = 0;  // unexplained() before it
+        double margin = 0;       // the pair's noise, and `convergence` of the energy
+        Snapshot merged;         // Lloyd settled after it, while its reference stage runs
+        double merged_unexplained = 0;
     };
     PendingMerge pending_merge_;
+    // unexplained() after a Lloyd stage from a partition (its partition_hash()), no merge made.
+    std::pair<std::uint64_t, double> reference_{0, 0};
     std::vector<std::pair<std::uint64_t, std::pair<int, int>>> rejected_merges_;
     Snapshot snapshot_;
     Operation last_operation_ = Operation::initialize;
