@@ -228,24 +228,8 @@ std::vector<char> find_creases(const DualGraph& g, const std::vector<Vec3>& norm
 void find_charts(const DualGraph& g, const std::vector<char>& reliable, Features& out) {
     const int n = static_cast<int>(reliable.size());
     out.chart.assign(n, -1);
-    std::vector<int> stack;
-    auto grow = [&](int f, bool through_unreliable) {
-        out.chart[f] = out.chart_count;
-        stack.assign(1, f);
-        while (!stack.empty()) {
-            const int h = stack.back();
-            stack.pop_back();
-            for (int e = g.begin(h); e < g.end(h); ++e) {
-                const int m = g.neighbor[e];
-                if (out.chart[m] >= 0 || out.crease[e] || (!through_unreliable && !reliable[m])) continue;
-                out.chart[m] = out.chart_count;
-                stack.push_back(m);
-            }
-        }
-        ++out.chart_count;
-    };
-    for (int f = 0; f < n; ++f)
-        if (out.chart[f] < 0 && reliable[f]) grow(f, false);
+    auto not_crease = [&](int link) { return !out.crease[link]; };
+    out.chart_count = label_components(g, out.chart, 0, [&](int f) { return reliable[f] != 0; }, not_crease);
     std::vector<int> queue;
     for (int f = 0; f < n; ++f)
         if (out.chart[f] >= 0) queue.push_back(f);
@@ -254,8 +238,8 @@ void find_charts(const DualGraph& g, const std::vector<char>& reliable, Features
             const int m = g.neighbor[e];
             if (out.chart[m] < 0) out.chart[m] = out.chart[queue[q]], queue.push_back(m);
         }
-    for (int f = 0; f < n; ++f)
-        if (out.chart[f] < 0) grow(f, true);  // a component without a reliable face
+    // The components without a reliable face.
+    out.chart_count = label_components(g, out.chart, out.chart_count, [](int) { return true; }, not_crease);
 }
 
 // Each vertex's roughness: how far it lies, along its normal, from the quadric height

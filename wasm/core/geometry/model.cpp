@@ -66,29 +66,6 @@ DualGraph dual_graph(const std::vector<Triangle>& triangles, const std::vector<V
     return graph;
 }
 
-int label_components(const DualGraph& graph, std::vector<int>& component) {
-    const int n = static_cast<int>(graph.start.size()) - 1;
-    component.assign(n, -1);
-    std::vector<int> stack;
-    int count = 0;
-    for (int f = 0; f < n; ++f) {
-        if (component[f] >= 0) continue;
-        component[f] = count;
-        stack.push_back(f);
-        while (!stack.empty()) {
-            const int g = stack.back();
-            stack.pop_back();
-            for (int e = graph.begin(g); e < graph.end(g); ++e)
-                if (component[graph.neighbor[e]] < 0) {
-                    component[graph.neighbor[e]] = count;
-                    stack.push_back(graph.neighbor[e]);
-                }
-        }
-        ++count;
-    }
-    return count;
-}
-
 }  // namespace
 
 Model make_model(const Mesh& mesh) {
@@ -126,7 +103,9 @@ Model make_model(const Mesh& mesh) {
             const double heights = 2 * (model.areas[f] + model.areas[h]) / g.edge_length[e];
             g.sagitta[e] = std::isfinite(turn * heights) ? turn * heights / 16 : 0;
         }
-    model.component_count = label_components(model.graph, model.component);
+    model.component.assign(model.face_count(), -1);
+    auto any = [](int) { return true; };
+    model.component_count = label_components(model.graph, model.component, 0, any, any);
     return model;
 }
 

@@ -31,6 +31,31 @@ struct DualGraph {
     int end(int f) const { return start[f + 1]; }
 };
 
+// Gives every face that is still -1 in `labels` and that `member(face)` admits the label of
+// its component: the member faces it reaches over the links `joins(link)` admits. Labels
+// run from `next` on, in the order of each component's first face; returns the next unused.
+template <class Member, class Joins>
+int label_components(const DualGraph& graph, std::vector<int>& labels, int next, Member member, Joins joins) {
+    std::vector<int> stack;
+    for (int f = 0; f < static_cast<int>(labels.size()); ++f) {
+        if (labels[f] >= 0 || !member(f)) continue;
+        labels[f] = next;
+        stack.assign(1, f);
+        while (!stack.empty()) {
+            const int h = stack.back();
+            stack.pop_back();
+            for (int e = graph.begin(h); e < graph.end(h); ++e) {
+                const int m = graph.neighbor[e];
+                if (labels[m] >= 0 || !joins(e) || !member(m)) continue;
+                labels[m] = next;
+                stack.push_back(m);
+            }
+        }
+        ++next;
+    }
+    return next;
+}
+
 struct Model {
     Frame frame;  // unit frame → input frame
     std::vector<Vec3> points;

@@ -179,19 +179,13 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     // shrinks to that handful. On block.off under noise of 0.1 % of its diagonal a hole's
     // region seeded on such a sliver (its error, weighted by its area, the least of the
     // region) kept 3 faces, and the other hole's quadric took both holes, then a face.
-    seedable_.assign(model_.face_count(), 0);
-    std::vector<char> reached(model_.face_count(), 0);
-    std::vector<int> members;  // of one crease-free component
-    for (int f = 0; f < model_.face_count(); ++f) {
-        if (reached[f]) continue;
-        members.assign(1, f);
-        reached[f] = 1;
-        for (std::size_t i = 0; i < members.size(); ++i)
-            for (int k = g.begin(members[i]); k < g.end(members[i]); ++k)
-                if (!features_.crease[k] && !reached[g.neighbor[k]]) reached[g.neighbor[k]] = 1, members.push_back(g.neighbor[k]);
-        if (static_cast<int>(members.size()) >= options_.min_quadric_faces)
-            for (int m : members) seedable_[m] = 1;
-    }
+    std::vector<int> component(model_.face_count(), -1);
+    const int components = label_components(
+        g, component, 0, [](int) { return true; }, [&](int link) { return !features_.crease[link]; });
+    std::vector<int> size(components, 0);
+    for (int c : component) ++size[c];
+    seedable_.resize(model_.face_count());
+    for (int f = 0; f < model_.face_count(); ++f) seedable_[f] = size[component[f]] >= options_.min_quadric_faces;
     face_noise_.resize(model_.face_count());
     for (int f = 0; f < model_.face_count(); ++f) face_noise_[f] = face_noise(model_, features_.roughness, f);
     // Each chart's error under its own fit, what a proxy of its own would leave. A chart
