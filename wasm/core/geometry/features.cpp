@@ -342,7 +342,7 @@ VertexDeviations vertex_deviations(const Model& model, const std::vector<Vec3>& 
 // under noise it is the RMS distance a locally exact surface leaves (samples at vertices
 // and barycentres). Where half a chart's vertices or more lie `beside_bend` (per vertex,
 // or empty; a countersink two facets tall between two bends), the median is one of
-// theirs: it is taken over the others. An `exact` chart (exact_charts) has no noise to
+// theirs: it is taken over the others. An `exact` chart (exact_groups) has no noise to
 // measure: its vertices beside bends never count, and the others, however few, are its
 // own (none: 0), not the whole mesh's (a coarse chamfered box, 44 triangles, all its
 // vertices on chamfers, had a roughness of 8 % of its size and came out as one sphere).
@@ -381,26 +381,26 @@ bool exactly_coplanar(const Model& model, const std::vector<Vec3>& normal, int f
            off_plane(h, f) <= kStoredPrecision;
 }
 
-// Per chart, whether its tessellation is exact: half its faces or more lie in one plane
-// with a neighbour of the chart, to the stored precision, which no noise leaves (a
-// coarse CAD export's faces are two triangles or a fan each). There, a vertex's deviation
-// from a quadric through its two rings measures the part's own edges and corners (a
-// chamfer a triangle wide), not noise.
-std::vector<char> exact_charts(const Model& model, const std::vector<Vec3>& normal, const Features& features) {
+// Per group of faces (`group`: per face, 0 to count - 1), whether its tessellation is
+// exact: half its faces or more lie in one plane with a neighbour of the group, to the
+// stored precision, which no noise leaves (a coarse CAD export's faces are two triangles
+// or a fan each). In such a chart, a vertex's deviation from a quadric through its two
+// rings measures the part's own edges and corners (a chamfer a triangle wide), not noise.
+std::vector<char> exact_groups(const Model& model, const std::vector<Vec3>& normal, const std::vector<int>& group,
+                               int count) {
     const DualGraph& g = model.graph;
-    const int n = model.face_count();
-    std::vector<int> faces(features.chart_count, 0), coplanar(features.chart_count, 0);
-    for (int f = 0; f < n; ++f) {
-        const int c = features.chart[f];
+    std::vector<int> faces(count, 0), coplanar(count, 0);
+    for (int f = 0; f < model.face_count(); ++f) {
+        const int c = group[f];
         ++faces[c];
         for (int e = g.begin(f); e < g.end(f); ++e)
-            if (features.chart[g.neighbor[e]] == c && exactly_coplanar(model, normal, f, g.neighbor[e])) {
+            if (group[g.neighbor[e]] == c && exactly_coplanar(model, normal, f, g.neighbor[e])) {
                 ++coplanar[c];
                 break;
             }
     }
-    std::vector<char> exact(features.chart_count);
-    for (int c = 0; c < features.chart_count; ++c) exact[c] = faces[c] > 0 && 2 * coplanar[c] >= faces[c];
+    std::vector<char> exact(count);
+    for (int c = 0; c < count; ++c) exact[c] = faces[c] > 0 && 2 * coplanar[c] >= faces[c];
     return exact;
 }
 
@@ -495,17 +495,8 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     for (int f = 0; f < n; ++f)
         for (int e = g.begin(f); e < g.end(f); ++e)
             if (f < g.neighbor[e]) link_angle.push_back(turn(g, raw, f, e));
-    auto exact_tessellation = [&] {
-        int coplanar = 0;
-        for (int f = 0; f < n; ++f)
-            for (int e = g.begin(f); e < g.end(f); ++e)
-                if (exactly_coplanar(model, raw, f, g.neighbor[e])) {
-                    ++coplanar;
-                    break;
-                }
-        return 2 * coplanar >= n;
-    };
     int rings = 0;
+    auto exact_tessellation = [&] { return exact_groups(model, raw, std::vector<int>(n, 0), 1)[0] != 0; };
     if (median(std::move(link_angle)) > options.filter_range && !exact_tessellation()) {
         noise = std::max(noise, levels.all);
         // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
@@ -527,7 +518,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     out.crease = find_creases(g, out.normals, options.crease_angle);
     find_charts(g, reliable, out);
     const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
-    const std::vector<char> exact = exact_charts(model, raw, out);
+    const std::vector<char> exact = exact_groups(model, raw, out.chart, out.chart_count);
     std::vector<double> per_chart = chart_roughness(deviations, out.chart_count, {}, exact);
 
     // Edges bent by more than half the crease angle are no chords of a smooth surface (a
