@@ -610,7 +610,12 @@ double Lloyd::noise_energy(int proxy) const {
 }
 
 double Lloyd::allowance(int proxy) const {
-    return std::max(noise_energy(proxy), proxies_[proxy].area * options_.precision * options_.precision);
+    // The `precision` floor is for free-form shapes, which no quadric holds exactly. An
+    // exact export's surfaces leave no error but its tessellation's sag (in its noise):
+    // there a region above that and above what the file stores lies on two surfaces (a
+    // plate's side strip, one facet tall, bent into the corner cylinder beside it).
+    const double floor = exact_ ? kStoredPrecision : options_.precision;
+    return std::max(noise_energy(proxy), proxies_[proxy].area * floor * floor);
 }
 
 double Lloyd::unexplained() const {

@@ -41,7 +41,8 @@ struct LloydOptions {
     // A region is explained when its mean squared error is at most noise_factor² times
     // the mean squared roughness of its faces (Features::roughness: the RMS a locally
     // exact surface leaves), or below `precision` (RMS, relative to the longest
-    // bounding-box side), the automatic count's floor for free-form shapes. A chart is
+    // bounding-box side), the automatic count's floor for free-form shapes (on an exact
+    // export, the stored precision instead: its surfaces leave no error). A chart is
     // structure its region misses when its error exceeds chart_factor times its error under
     // its own fit.
     double noise_factor = 1.4;
@@ -290,7 +291,7 @@ private:
     // (rejected_merges_) are not merged again.
     bool merge_same_surface(bool within_noise = true, std::pair<int, int>* merged = nullptr);
     // The error a region may carry and be explained: its noise_energy, or its area times
-    // `precision`², whichever is larger.
+    // `precision`² (kStoredPrecision² on an exact export), whichever is larger.
     double allowance(int proxy) const;
     // Σ over regions of the error beyond their allowance.
     double unexplained() const;
