@@ -169,15 +169,22 @@ std::vector<Vec3> guidance_normals(const DualGraph& g, const std::vector<Vec3>& 
         mean[c] = sum.norm() > 0 ? Vec3(sum.normalized()) : normal[c];
         spread[c] = total > 0 ? 1 - sum.norm() / total : 1;
     }
-    std::fill(stamp.begin(), stamp.end(), -1);
-    std::vector<Vec3> guidance(n);
-    for (int f = 0; f < n; ++f) {
-        gather(f);
-        int best = f;
-        for (int c : ring)
-            if (spread[c] < spread[best] || (spread[c] == spread[best] && c < best)) best = c;
-        guidance[f] = mean[best];
+    // Each face takes the mean of the most consistent patch centred within `rings` of it,
+    // found one ring at a time: the least within k + 1 rings of a face is the least of its
+    // own and its neighbours' least within k.
+    std::vector<int> best(n), next(n);
+    for (int f = 0; f < n; ++f) best[f] = f;
+    auto better = [&](int c, int d) { return spread[c] < spread[d] || (spread[c] == spread[d] && c < d); };
+    for (int depth = 0; depth < rings; ++depth) {
+        for (int f = 0; f < n; ++f) {
+            next[f] = best[f];
+            for (int e = g.begin(f); e < g.end(f); ++e)
+                if (better(best[g.neighbor[e]], next[f])) next[f] = best[g.neighbor[e]];
+        }
+        best.swap(next);
     }
+    std::vector<Vec3> guidance(n);
+    for (int f = 0; f < n; ++f) guidance[f] = mean[best[f]];
     return guidance;
 }
 
