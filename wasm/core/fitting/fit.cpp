@@ -140,6 +140,26 @@ double residual_kurtosis(const LocalMoments& local, const Vec3& n) {
     return e2 > 0 ? e4 / (e2 * e2) : 3;
 }
 
+// The mean squared distance of the region to the plane n·q = d (n a unit vector), in its
+// local frame, whose origin is the region's centroid.
+double plane_mean_squared(const LocalMoments& local, const Vec3& n, double d) {
+    return std::max(0.0, n.dot(second_moments(local) * n) + d * d);
+}
+
+// Whether one plane of `shape`, a pair of intersecting planes (in the local frame), holds
+// the region about as well as its plane fit does.
+bool one_plane_of_pair(const LocalMoments& local, const Classification& shape, const Fit& plane,
+                       const FitOptions& options) {
+    if (shape.type != QuadricType::intersecting_planes) return false;
+    const double bound = (1 + options.plane_tolerance) * plane.mean_squared +
+                         options.negligible_distance * options.negligible_distance;
+    for (double sign : {-1.0, 1.0}) {
+        const Vec3 n = (shape.rotation * Vec3(1 / shape.semi_axes.x(), sign / shape.semi_axes.y(), 0)).normalized();
+        if (plane_mean_squared(local, n, n.dot(shape.center)) <= bound) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 RegionFrame region_frame(const Moments& m) {
@@ -204,30 +224,10 @@ Fit fit_region(const Moments& region, const FitOptions& options) {
     const bool double_plane = shape.type == QuadricType::parallel_planes &&
                               (shape.semi_axes.z() == 0 || residual_kurtosis(local, plane.quadric.b()) > 2);
     const bool prefer_plane = double_plane ||
-                              plane.mean_squared <= (1 + options.plane_tolerance) * quadric.mean_squared + negligible;
+                              plane.mean_squared <= (1 + options.plane_tolerance) * quadric.mean_squared + negligible ||
+                              (options.plane_of_pair && one_plane_of_pair(local, shape, plane, options));
     const Fit& best = prefer_plane ? plane : quadric;
     return to_unit_frame(best, local);
-}
-
-// The mean squared distance of the region to the plane n·q = d (n a unit vector), in its
-// local frame, whose origin is the region's centroid.
-double plane_mean_squared(const LocalMoments& local, const Vec3& n, double d) {
-    return std::max(0.0, n.dot(second_moments(local) * n) + d * d);
-}
-
-Fit plane_of_pair(const Moments& region, const Fit& fit, const FitOptions& options) {
-    const LocalMoments local = localize(region);
-    const Classification shape = classify(fit.quadric, local.center, local.radius);
-    if (shape.type != QuadricType::intersecting_planes) return fit;
-    const Fit plane = plane_local(local);
-    const double bound = (1 + options.plane_tolerance) * plane.mean_squared +
-                         options.negligible_distance * options.negligible_distance;
-    for (double sign : {-1.0, 1.0}) {
-        const Vec3 n = (shape.rotation * Vec3(1 / shape.semi_axes.x(), sign / shape.semi_axes.y(), 0)).normalized();
-        if (plane_mean_squared(local, n, n.dot(shape.center - local.center) / local.radius) <= bound)
-            return to_unit_frame(plane, local);
-    }
-    return fit;
 }
 
 }  // namespace vqsa

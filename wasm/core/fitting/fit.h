@@ -16,6 +16,13 @@ struct FitOptions {
     // Tikhonov term on Ñ, relative to its mean eigenvalue: keeps the pencil definite
     // for planar and nearly planar regions.
     double regularization = 1e-9;
+    // The plane too where the quadric is a pair of intersecting planes one of which alone
+    // holds the region about as well as the plane does (plane_tolerance): m·l = 0 vanishes
+    // on l whatever m, and Taubin's fit to a noisy plane tilts m through it so that the
+    // first-order distance shaves the noise (two coplanar pieces of a noisy flange's face:
+    // their union a quarter to a third below the plane's mean square, typed a pair of
+    // planes, and never merged). A union on one part of a degenerate quadric is that part.
+    bool plane_of_pair = false;
 };
 
 // A region's centroid and RMS radius, from its moments.
@@ -51,13 +58,5 @@ Fit fit_plane(const Moments& region);
 
 // The better of the two, with the plane preferred as FitOptions says.
 Fit fit_region(const Moments& region, const FitOptions& options = {});
-
-// `fit` of a union of regions, or the plane where `fit` is a pair of intersecting planes one
-// of which alone holds the union about as well as its plane fit (plane_tolerance): m·l = 0
-// vanishes on l whatever m, and Taubin's fit to a noisy plane tilts m through it so that
-// the first-order distance shaves the noise (two coplanar pieces of a noisy flange's face:
-// their union a quarter to a third below the plane's mean square, typed a pair of planes,
-// and never merged). A union on one part of a degenerate quadric is that part.
-Fit plane_of_pair(const Moments& region, const Fit& fit, const FitOptions& options = {});
 
 }  // namespace vqsa

@@ -65,8 +65,11 @@ void validate(const LloydOptions& o) {
     if (!(o.noise_factor > 0) || !(o.chart_factor > 0) || !(o.precision >= 0) || !(o.min_gain >= 0)) fail("noise factor, precision or gain out of range");
 }
 
-Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options) {
-    return faces < options.min_quadric_faces ? fit_plane(moments) : fit_region(moments, options.fit);
+Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options, bool plane_of_pair) {
+    if (faces < options.min_quadric_faces) return fit_plane(moments);
+    FitOptions fit = options.fit;
+    fit.plane_of_pair = plane_of_pair;
+    return fit_region(moments, fit);
 }
 
 void refit_regions(const Model& model, const std::vector<int>& labels, const LloydOptions& options,
@@ -910,10 +913,10 @@ Lloyd::Union Lloyd::fit_union(const std::vector<int>& regions) const {
     Union u{};
     int faces = 0;
     for (int r : regions) add_to(u.moments, proxies_[r].moments), faces += proxies_[r].faces;
-    u.fit = fit_proxy(u.moments, faces, options_);
-    // Only under noise: on an exact or finely tessellated mesh the second plane of a pair
-    // holds faces of its own (a strip of facets beyond a crease), which the plane would hide.
-    if (noisy_) u.fit = plane_of_pair(u.moments, u.fit, options_.fit);
+    // The plane of a pair only under noise: on an exact or finely tessellated mesh the
+    // second plane of a pair holds faces of its own (a strip of facets beyond a crease),
+    // which the plane would hide.
+    u.fit = fit_proxy(u.moments, faces, options_, noisy_);
     return u;
 }
 
@@ -930,11 +933,11 @@ bool Lloyd::union_on_two_parts(const Union& u, int a, int b) const {
     return on_two_parts(u.fit.quadric, parts(u.fit.quadric, classify_union(u), margin, a, b), area);
 }
 
-bool Lloyd::union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces) const {
+bool Lloyd::union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces,
+                                const std::array<double, 2>& error) const {
     if (!plane_pairs_split() || u.fit.quadric.is_plane()) return false;
     std::vector<int> both = faces[a];
     both.insert(both.end(), faces[b].begin(), faces[b].end());
-    const std::array<double, 2> error = errors_against(u.fit.quadric, a, b, faces);
     const Parts pair = plane_pair(both, error[0] + error[1]);
     return pair.both(u.moments[0], options_.split_fraction);
 }
@@ -1009,8 +1012,9 @@ bool Lloyd::absorb(int region, int excluded) {
     return merge_least_cost(
         [&](int a, int b) { return (a == region || b == region) && a != excluded && b != excluded; },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
-            return !union_on_two_parts(u, a, b) && one_surface(u.fit.quadric, a, b, faces) &&
-                   !union_on_plane_pair(u, a, b, faces);
+            if (union_on_two_parts(u, a, b)) return false;
+            const std::array<double, 2> error = errors_against(u.fit.quadric, a, b, faces);
+            return one_surface(u.fit.quadric, a, b, faces, error) && !union_on_plane_pair(u, a, b, faces, error);
         });
 }
 
@@ -1246,7 +1250,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         if (std::find(rejected_merges_.begin(), rejected_merges_.end(), merge) != rejected_merges_.end()) continue;
         const Quadric& q = c.u.fit.quadric;
         // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
-        const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces);
+        const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces, errors_against(q, i, j, faces));
         const bool on_vertices = c.on_vertices || (!on_faces && vertices_on_one_surface(c.u, i, j, faces));
         if (!on_faces && !on_vertices) continue;
         // Under noise, model selection types a piece of a plane as whatever bends within its
@@ -1302,10 +1306,10 @@ std::array<double, 2> Lloyd::errors_against(const Quadric& q, int a, int b, cons
     return error;
 }
 
-bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const {
+bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces,
+                        const std::array<double, 2>& error) const {
     // Each part judged alone (lies_on), so that a small region's misfit does not hide in a
     // large region's noise.
-    const std::array<double, 2> error = errors_against(q, a, b, faces);
     const int m = options_.min_quadric_faces;
     if (!lies_on(a, error[0], is_strip(model_, labels_, faces[a], m), error[1] / proxies_[b].area) ||
         !lies_on(b, error[1], is_strip(model_, labels_, faces[b], m), error[0] / proxies_[a].area))

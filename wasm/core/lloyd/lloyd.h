@@ -99,8 +99,8 @@ struct Proxy {
 };
 
 // The fit a region of `faces` faces gets: a plane below `min_quadric_faces`, else the
-// better of plane and quadric (fit_region).
-Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options);
+// better of plane and quadric (fit_region; FitOptions::plane_of_pair as given).
+Fit fit_proxy(const Moments& moments, int faces, const LloydOptions& options, bool plane_of_pair = false);
 
 // Σ over the model's faces of each region's moments, face count and area; refits the
 // regions flagged in `changed` (all when empty).
@@ -246,8 +246,9 @@ private:
     Classification classify_union(const Union& u) const;
     // Whether the union of a and b would be an invalid region.
     bool union_on_two_parts(const Union& u, int a, int b) const;
-    // Whether the union lies on a plane_pair.
-    bool union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces) const;
+    // Whether the union lies on a plane_pair; `error`: errors_against its quadric.
+    bool union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces,
+                             const std::array<double, 2>& error) const;
     // Merges the adjacent pair, among those `eligible`, whose union costs least and is
     // `acceptable`.
     bool merge_least_cost(const std::function<bool(int, int)>& eligible,
@@ -324,8 +325,9 @@ private:
     bool keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const;
     // Σ d(f, q) over the faces of region a, and of region b.
     std::array<double, 2> errors_against(const Quadric& q, int a, int b, const RegionFaces& faces) const;
-    // Whether q explains regions a and b as one surface (see merge_same_surface).
-    bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces) const;
+    // Whether q explains regions a and b as one surface (see merge_same_surface); `error`:
+    // errors_against q.
+    bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces, const std::array<double, 2>& error) const;
     // Whether the vertices of regions a and b (union u) lie on one quadric, with one part
     // under them, far closer than their faces do: a tessellation's surface (see lloyd.cpp).
     bool vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const;
