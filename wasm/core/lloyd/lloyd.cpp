@@ -349,6 +349,8 @@ void Lloyd::start_operation(Operation operation) {
 
 void Lloyd::decide() {
     if (teleport_pending_ && static_cast<int>(proxies_.size()) == options_.proxies) judge_teleport();
+    // A merge is judged by the Lloyd stage around it alone: before any split or repair.
+    if (judge_merge()) return start_operation(Operation::iterate);
     const int count = static_cast<int>(proxies_.size());
     const int target = options_.proxies;
     // Valid at every stop: a region on two parts of its quadric is split first, whatever the
@@ -556,7 +558,6 @@ void Lloyd::finish() {
         // use up the noise of its two regions, no more (two holes crossing each other
         // meet along curves where one quadric passes near both, within a coarse
         // tessellation's noise, and that quadric then takes both holes).
-        if (judge_merge()) return start_operation(Operation::iterate);
         PendingMerge pending;
         pending.before = {labels_, proxies_, energy_};
         pending.state = partition_hash();
