@@ -554,10 +554,10 @@ void Lloyd::finish() {
     // regions of a handful of faces (too few to tell a surface) into a neighbour; at a
     // count the user chose, only slivers and pieces of one exact surface.
     if (automatic()) {
-        // A same-surface merge is judged once Lloyd has settled around it: the union may
-        // use up the noise of its two regions, no more (two holes crossing each other
-        // meet along curves where one quadric passes near both, within a coarse
-        // tessellation's noise, and that quadric then takes both holes).
+        // A same-surface merge is judged once Lloyd has settled around it (judge_merge, first
+        // thing in decide()): the union may use up the noise of its two regions, no more (two
+        // holes crossing each other meet along curves where one quadric passes near both,
+        // within a coarse tessellation's noise, and that quadric then takes both holes).
         PendingMerge pending;
         pending.before = {labels_, proxies_, energy_};
         pending.state = partition_hash();
