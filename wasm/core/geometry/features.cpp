@@ -377,31 +377,19 @@ std::vector<double> chart_roughness(const VertexDeviations& deviations, int char
     return roughness;
 }
 
-// Whether faces f and h lie in one plane to the stored precision, which no noise leaves.
-bool exactly_coplanar(const Model& model, const std::vector<Vec3>& normal, int f, int h) {
-    auto off_plane = [&](int a, int b) {  // b's far vertex from a's plane
-        double d = 0;
-        for (int v : model.triangles[b]) d = std::max(d, std::abs((model.points[v] - model.points[model.triangles[a][0]]).dot(normal[a])));
-        return d;
-    };
-    return normal[f].squaredNorm() > 0 && normal[h].squaredNorm() > 0 && off_plane(f, h) <= kStoredPrecision &&
-           off_plane(h, f) <= kStoredPrecision;
-}
-
 // Per group of faces (`group`: per face, 0 to count - 1), whether its tessellation is
 // exact: half its faces or more lie in one plane with a neighbour of the group, to the
 // stored precision, which no noise leaves (a coarse CAD export's faces are two triangles
 // or a fan each). In such a chart, a vertex's deviation from a quadric through its two
 // rings measures the part's own edges and corners (a chamfer a triangle wide), not noise.
-std::vector<char> exact_groups(const Model& model, const std::vector<Vec3>& normal, const std::vector<int>& group,
-                               int count) {
+std::vector<char> exact_groups(const Model& model, const std::vector<int>& group, int count) {
     const DualGraph& g = model.graph;
     std::vector<int> faces(count, 0), coplanar(count, 0);
     for (int f = 0; f < model.face_count(); ++f) {
         const int c = group[f];
         ++faces[c];
         for (int e = g.begin(f); e < g.end(f); ++e)
-            if (group[g.neighbor[e]] == c && exactly_coplanar(model, normal, f, g.neighbor[e])) {
+            if (group[g.neighbor[e]] == c && exactly_coplanar(model, f, g.neighbor[e])) {
                 ++coplanar[c];
                 break;
             }
@@ -503,7 +491,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         for (int e = g.begin(f); e < g.end(f); ++e)
             if (f < g.neighbor[e]) link_angle.push_back(turn(g, raw, f, e));
     int rings = 0;
-    auto exact_tessellation = [&] { return exact_groups(model, raw, std::vector<int>(n, 0), 1)[0] != 0; };
+    auto exact_tessellation = [&] { return exact_groups(model, std::vector<int>(n, 0), 1)[0] != 0; };
     if (median(std::move(link_angle)) > options.filter_range && !exact_tessellation()) {
         noise = std::max(noise, levels.all);
         // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
@@ -525,7 +513,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     out.crease = find_creases(g, out.normals, options.crease_angle);
     find_charts(g, reliable, out);
     const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
-    const std::vector<char> exact = exact_groups(model, raw, out.chart, out.chart_count);
+    const std::vector<char> exact = exact_groups(model, out.chart, out.chart_count);
     std::vector<double> per_chart = chart_roughness(deviations, out.chart_count, {}, exact);
 
     // Edges bent by more than half the crease angle are no chords of a smooth surface (a

@@ -118,6 +118,21 @@ std::array<int, 2> shared_edge(const Model& model, int a, int b) {
     return k == 2 ? shared : std::array<int, 2>{-1, -1};
 }
 
+bool exactly_coplanar(const Model& model, int f, int h) {
+    auto normal = [&](int a) {
+        const Triangle& t = model.triangles[a];
+        return Vec3((model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]));
+    };
+    const Vec3 nf = normal(f), nh = normal(h);
+    if (!(nf.squaredNorm() > 0 && nh.squaredNorm() > 0)) return false;
+    auto off_plane = [&](int a, const Vec3& n, int b) {  // b's far vertex from a's plane
+        double d = 0;
+        for (int v : model.triangles[b]) d = std::max(d, std::abs((model.points[v] - model.points[model.triangles[a][0]]).dot(n)));
+        return d;
+    };
+    return off_plane(f, nf.normalized(), h) <= kStoredPrecision && off_plane(h, nh.normalized(), f) <= kStoredPrecision;
+}
+
 Moments moments_of(const Model& model, const std::vector<int>& faces) {
     Moments sum{};
     for (int f : faces) add_to(sum, model.moments[f]);

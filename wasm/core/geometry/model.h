@@ -73,6 +73,10 @@ struct Model {
 
 Model make_model(const Mesh& mesh);
 
+// Whether faces f and h lie in one plane to the stored precision (each within it of the
+// other's plane), which no noise leaves.
+bool exactly_coplanar(const Model& model, int f, int h);
+
 // Σ of the faces' moments.
 Moments moments_of(const Model& model, const std::vector<int>& faces);
 

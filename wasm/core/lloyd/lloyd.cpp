@@ -1067,18 +1067,26 @@ void Lloyd::release_minor_parts() {
     // cylinder's quadric, fitted to its facets, is not exact either). A narrow face of its
     // own stays, as no neighbour explains it: at a count below the part's faces a pair of
     // planes may fit two faces, and the paper's counts keep their partitions.
+    // On an exact export, so do the faces off the plane most of a region lies in: a plate's
+    // side strip, one facet tall, and a facet or two of the corner cylinder beside it lie
+    // exactly on a cone. There a face also goes to a neighbour whose vertices and its own lie
+    // on one surface (vertex_surface): the corner's quadric, fitted to a strip one facet tall
+    // that its vertices do not determine, misses the next facet by several times its error.
     const DualGraph& g = model_.graph;
     const double factor = options_.noise_factor * options_.noise_factor, floor = options_.precision * options_.precision;
     FaceErrors others;
+    RegionFaces faces = exact_ ? faces_by_region() : RegionFaces{};
+    std::vector<int> piece(exact_ ? model_.face_count() : 0, -1);
     for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
-        // A second part large enough to count is ensure_valid's; none at all, nothing to do.
+        // A second part large enough to count is ensure_valid's.
         Parts p;
         if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() || invalid(i, &p)) continue;
         const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
-        if (p.count[minor] == 0) continue;
+        std::vector<int> strip = exact_ ? off_plane_faces(faces[i], piece) : std::vector<int>{};
+        if (strip.empty()) strip = p.faces[minor];
+        if (strip.empty()) continue;
         // Only a strip one facet wide: a column of a ruled band's tessellation lies exactly
         // on a plane, which makes the pair; a compact second part is a shape of its own.
-        const std::vector<int>& strip = p.faces[minor];
         std::vector<int> on_minor(model_.face_count(), 0);
         for (int f : strip) on_minor[f] = 1;
         if (!is_strip(model_, on_minor, strip, 0)) continue;
@@ -1097,10 +1105,16 @@ void Lloyd::release_minor_parts() {
                     if (j == i || j == to || !(proxies_[j].area > 0)) continue;
                     const double e = others(f, j);
                     const double as_its_own = factor * model_.areas[f] * proxies_[j].error / proxies_[j].area;
-                    if (e <= std::max(errors_[f], as_its_own) && e < least) least = e, to = j;
+                    if (e >= least) continue;
+                    const std::vector<int> alone{f};
+                    if (e <= std::max(errors_[f], as_its_own) ||
+                        (exact_ && vertex_surface({{&faces[j], proxies_[j].moments, region_noise_[j]},
+                                                   {&alone, model_.moments[f], face_noise_[f]}}).one))
+                        least = e, to = j;
                 }
                 if (to < 0) continue;
                 labels_[f] = to;
+                if (exact_) faces[to].push_back(f);
                 changed[i] = changed[to] = 1, moved = true;
             }
         }
@@ -1120,6 +1134,46 @@ void Lloyd::release_minor_parts() {
         }
         if (!kept) restore(before);
     }
+}
+
+std::vector<int> Lloyd::off_plane_faces(const std::vector<int>& region, std::vector<int>& piece) const {
+    // The region's pieces of exactly coplanar neighbours, by area.
+    const DualGraph& g = model_.graph;
+    const int label = labels_[region.front()];
+    std::vector<double> area;
+    std::vector<int> stack;
+    double total = 0;
+    for (int f : region) {
+        total += model_.areas[f];
+        if (piece[f] >= 0) continue;
+        piece[f] = static_cast<int>(area.size());
+        area.push_back(0);
+        stack.assign(1, f);
+        while (!stack.empty()) {
+            const int h = stack.back();
+            stack.pop_back();
+            area.back() += model_.areas[h];
+            for (int e = g.begin(h); e < g.end(h); ++e) {
+                const int m = g.neighbor[e];
+                if (labels_[m] != label || piece[m] >= 0 || !exactly_coplanar(model_, h, m)) continue;
+                piece[m] = piece[f];
+                stack.push_back(m);
+            }
+        }
+    }
+    const int largest = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
+    std::vector<int> off;
+    if (2 * area[largest] > total) {
+        const int in_plane = *std::find_if(region.begin(), region.end(), [&](int f) { return piece[f] == largest; });
+        const Quadric plane = plane_through(model_, in_plane);
+        for (int f : region) {
+            bool on = true;
+            for (int v : model_.triangles[f]) on = on && std::abs(plane.value(model_.points[v])) <= kStoredPrecision;
+            if (!on) off.push_back(f);
+        }
+    }
+    for (int f : region) piece[f] = -1;
+    return off;
 }
 
 bool Lloyd::invalid(int proxy, Parts* result) const {
@@ -1320,13 +1374,19 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
 }
 
 Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, const RegionFaces& faces) const {
+    std::vector<Piece> pieces;
+    for (int r : regions) pieces.push_back({&faces[r], proxies_[r].moments, region_noise_[r]});
+    return vertex_surface(pieces);
+}
+
+Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) const {
     const double stored = kStoredPrecision * kStoredPrecision;
     std::vector<int> all;
-    for (int r : regions) all.insert(all.end(), faces[r].begin(), faces[r].end());
+    for (const Piece& p : pieces) all.insert(all.end(), p.faces->begin(), p.faces->end());
     const Samples s = region_samples(model_, all);
     const Moments vertices = moments_of(s);
     Moments united{};  // of the faces
-    for (int r : regions) add_to(united, proxies_[r].moments);
+    for (const Piece& p : pieces) add_to(united, p.moments);
     Fit fit = fit_taubin(vertices);
     // The vertices must determine it: a strip one face wide, or ten vertices, lie on many
     // quadrics; no other may come within the tessellation's deviation (twice its median
@@ -1351,12 +1411,12 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, cons
     FaceErrors evaluator;
     evaluator.reset(model_, {fit.quadric});
     double noise = 0;
-    for (int r : regions) {
+    for (const Piece& p : pieces) {
         double error = 0;
-        for (int f : faces[r]) error += evaluator(f, 0);
-        if (!(error <= sag * sag * proxies_[r].area)) return out;
-        if (r != regions.front() && faces_both_ways(fit.quadric, faces[regions.front()], faces[r])) return out;
-        noise += region_noise_[r];
+        for (int f : *p.faces) error += evaluator(f, 0);
+        if (!(error <= sag * sag * p.moments[0])) return out;
+        if (&p != &pieces.front() && faces_both_ways(fit.quadric, *pieces.front().faces, *p.faces)) return out;
+        noise += p.noise;
     }
     // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not
     // (as for a region: faces within the fit's error or the noise of where its parts meet

@@ -265,6 +265,10 @@ private:
     // At the stop: the faces on a region's second part, too small to split off, to
     // neighbouring regions that explain them as well (see lloyd.cpp).
     void release_minor_parts();
+    // On an exact export: the faces of `region` off the plane of its largest piece of exactly
+    // coplanar faces, when that holds most of its area (else none). `piece`: per face of the
+    // model, all -1; left so.
+    std::vector<int> off_plane_faces(const std::vector<int>& region, std::vector<int>& piece) const;
     // Splits the invalid region of largest error (`plane_pairs`: the region on a plane pair).
     bool split_invalid(bool plane_pairs);
     // split_invalid within the split budget, and not from a partition split from before.
@@ -339,6 +343,13 @@ private:
         bool determined = false, one = false;
     };
     VertexSurface vertex_surface(const std::vector<int>& regions, const RegionFaces& faces) const;
+    // The same for pieces that need not be regions (a region and a face of another).
+    struct Piece {
+        const std::vector<int>* faces;
+        Moments moments;  // of the faces
+        double noise;     // Σ face_noise_ over them
+    };
+    VertexSurface vertex_surface(const std::vector<Piece>& pieces) const;
     // Merges a run of adjacent regions whose vertices lie on one quadric as closely as a
     // file stores them and determine it together, though no pair of them does (a coarse
     // fillet's one-facet strips): whether it did (see lloyd.cpp).
