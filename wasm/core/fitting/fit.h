@@ -16,8 +16,8 @@ struct FitOptions {
     // Tikhonov term on Ñ, relative to its mean eigenvalue: keeps the pencil definite
     // for planar and nearly planar regions.
     double regularization = 1e-9;
-    // The plane too where the quadric is a pair of intersecting planes one of which alone
-    // holds the region about as well as the plane does (plane_tolerance): m·l = 0 vanishes
+    // Prefer the plane also where the quadric is a pair of intersecting planes one of which
+    // alone holds the region about as well as the plane does (plane_tolerance): m·l = 0 vanishes
     // on l whatever m, and Taubin's fit to a noisy plane tilts m through it so that the
     // first-order distance shaves the noise (two coplanar pieces of a noisy flange's face:
     // their union a quarter to a third below the plane's mean square, typed a pair of
