@@ -235,7 +235,7 @@ std::vector<char> find_creases(const DualGraph& g, const std::vector<Vec3>& norm
 void find_charts(const DualGraph& g, const std::vector<char>& reliable, Features& out) {
     const int n = static_cast<int>(reliable.size());
     out.chart.assign(n, -1);
-    auto not_crease = [&](int link) { return !out.crease[link]; };
+    auto not_crease = [&](int, int link) { return !out.crease[link]; };
     out.chart_count = label_components(g, out.chart, 0, [&](int f) { return reliable[f] != 0; }, not_crease);
     std::vector<int> queue;
     for (int f = 0; f < n; ++f)

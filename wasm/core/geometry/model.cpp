@@ -104,7 +104,7 @@ Model make_model(const Mesh& mesh) {
             g.sagitta[e] = std::isfinite(turn * heights) ? turn * heights / 16 : 0;
         }
     model.component.assign(model.face_count(), -1);
-    auto any = [](int) { return true; };
+    auto any = [](auto...) { return true; };
     model.component_count = label_components(model.graph, model.component, 0, any, any);
     return model;
 }

@@ -31,28 +31,32 @@ struct DualGraph {
     int end(int f) const { return start[f + 1]; }
 };
 
+// Gives face `seed` (-1 in `labels`) and every face of its component the label `label`: the
+// faces `member(face)` admits that it reaches over the links `joins(face, link)` admits,
+// `link` being one of `face`'s (DualGraph::neighbor's indexing).
+template <class Member, class Joins>
+void label_component(const DualGraph& graph, int seed, int label, std::vector<int>& labels, Member member, Joins joins) {
+    std::vector<int> stack{seed};
+    labels[seed] = label;
+    while (!stack.empty()) {
+        const int h = stack.back();
+        stack.pop_back();
+        for (int e = graph.begin(h); e < graph.end(h); ++e) {
+            const int m = graph.neighbor[e];
+            if (labels[m] >= 0 || !joins(h, e) || !member(m)) continue;
+            labels[m] = label;
+            stack.push_back(m);
+        }
+    }
+}
+
 // Gives every face that is still -1 in `labels` and that `member(face)` admits the label of
-// its component: the member faces it reaches over the links `joins(link)` admits. Labels
-// run from `next` on, in the order of each component's first face; returns the next unused.
+// its component (label_component). Labels run from `next` on, in the order of each
+// component's first face; returns the next unused.
 template <class Member, class Joins>
 int label_components(const DualGraph& graph, std::vector<int>& labels, int next, Member member, Joins joins) {
-    std::vector<int> stack;
-    for (int f = 0; f < static_cast<int>(labels.size()); ++f) {
-        if (labels[f] >= 0 || !member(f)) continue;
-        labels[f] = next;
-        stack.assign(1, f);
-        while (!stack.empty()) {
-            const int h = stack.back();
-            stack.pop_back();
-            for (int e = graph.begin(h); e < graph.end(h); ++e) {
-                const int m = graph.neighbor[e];
-                if (labels[m] >= 0 || !joins(e) || !member(m)) continue;
-                labels[m] = next;
-                stack.push_back(m);
-            }
-        }
-        ++next;
-    }
+    for (int f = 0; f < static_cast<int>(labels.size()); ++f)
+        if (labels[f] < 0 && member(f)) label_component(graph, f, next++, labels, member, joins);
     return next;
 }
 

@@ -184,7 +184,7 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     // region) kept 3 faces, and the other hole's quadric took both holes, then a face.
     std::vector<int> component(model_.face_count(), -1);
     const int components = label_components(
-        g, component, 0, [](int) { return true; }, [&](int link) { return !features_.crease[link]; });
+        g, component, 0, [](int) { return true; }, [&](int, int link) { return !features_.crease[link]; });
     std::vector<int> size(components, 0);
     for (int c : component) ++size[c];
     seedable_.resize(model_.face_count());
@@ -1132,7 +1132,9 @@ void Lloyd::release_minor_parts() {
             const Proxy &now = proxies_[j], &was = before.proxies[j];
             kept = now.error <= now.area * std::max(factor * was.error / std::max(was.area, 1e-300), floor);
         }
-        if (!kept) restore(before);
+        if (kept) continue;
+        restore(before);
+        if (exact_) faces = faces_by_region();  // the moved faces are back where they were
     }
 }
 
@@ -1140,27 +1142,14 @@ std::vector<int> Lloyd::off_plane_faces(const std::vector<int>& region, std::vec
     // The region's pieces of exactly coplanar neighbours, by area.
     const DualGraph& g = model_.graph;
     const int label = labels_[region.front()];
-    std::vector<double> area;
-    std::vector<int> stack;
+    auto in_region = [&](int f) { return labels_[f] == label; };
+    auto coplanar = [&](int f, int link) { return exactly_coplanar(model_, f, g.neighbor[link]); };
+    int pieces = 0;
+    for (int f : region)
+        if (piece[f] < 0) label_component(g, f, pieces++, piece, in_region, coplanar);
+    std::vector<double> area(pieces, 0.0);
     double total = 0;
-    for (int f : region) {
-        total += model_.areas[f];
-        if (piece[f] >= 0) continue;
-        piece[f] = static_cast<int>(area.size());
-        area.push_back(0);
-        stack.assign(1, f);
-        while (!stack.empty()) {
-            const int h = stack.back();
-            stack.pop_back();
-            area.back() += model_.areas[h];
-            for (int e = g.begin(h); e < g.end(h); ++e) {
-                const int m = g.neighbor[e];
-                if (labels_[m] != label || piece[m] >= 0 || !exactly_coplanar(model_, h, m)) continue;
-                piece[m] = piece[f];
-                stack.push_back(m);
-            }
-        }
-    }
+    for (int f : region) area[piece[f]] += model_.areas[f], total += model_.areas[f];
     const int largest = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
     std::vector<int> off;
     if (2 * area[largest] > total) {
