@@ -16,6 +16,7 @@ inline Samples thinned(const Samples& s, std::size_t limit) {
     Samples out;
     out.tolerance = s.tolerance;
     out.noise = s.noise;
+    out.scatter = s.scatter;
     const double stride = double(s.points.size()) / limit;
     for (std::size_t k = 0; k < limit; ++k) {
         const std::size_t i = static_cast<std::size_t>(k * stride);

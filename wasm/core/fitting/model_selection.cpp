@@ -65,6 +65,41 @@ double midpoint_mean_square(const Samples& s, const Quadric& q, bool beyond_tole
     return sum / s.edge_midpoints.size();
 }
 
+// The CAD surfaces: the types a part's faces are made of.
+bool elementary(const TypedFit& c) {
+    return c.special && (c.type == QuadricType::plane || c.type == QuadricType::sphere ||
+                         c.type == QuadricType::cylinder || c.type == QuadricType::cone);
+}
+
+// Among candidates sorted by the criterion, the simplest that departs from the first (the
+// best) by less than the samples' scatter: its mean square exceeds the best's by at most
+// scatter² (the best being the surface, the simpler one strays from it by that much). An
+// elementary type before a general quadric (the first elementary one by the criterion:
+// sphere and cylinder are not special cases of each other); a cylinder before a cone (the
+// cone of apex at infinity); a plane before anything. With a million vertices the
+// criterion resolves a quadric that bends away from a cylinder by a fifth of the noise,
+// as a remeshed or scanned cylinder's vertices do: a real difference, of the data, not
+// of the part.
+std::vector<TypedFit>::iterator simplest_within_scatter(std::vector<TypedFit>& candidates, double scatter) {
+    const TypedFit& best = candidates.front();
+    const double allowed = best.rms * best.rms + scatter * scatter;
+    auto admitted = [&](QuadricType type) {
+        return std::find_if(candidates.begin(), candidates.end(), [&](const TypedFit& c) {
+            return elementary(c) && c.type == type && c.rms * c.rms <= allowed;
+        });
+    };
+    auto simplest = candidates.begin();
+    if (!elementary(best)) {
+        const auto e = std::find_if(candidates.begin(), candidates.end(),
+                                    [&](const TypedFit& c) { return elementary(c) && c.rms * c.rms <= allowed; });
+        if (e != candidates.end()) simplest = e;
+    }
+    if (simplest->type == QuadricType::cone && admitted(QuadricType::cylinder) != candidates.end())
+        simplest = admitted(QuadricType::cylinder);
+    if (admitted(QuadricType::plane) != candidates.end()) simplest = admitted(QuadricType::plane);
+    return simplest;
+}
+
 constexpr ImposedType kImposedTypes[] = {ImposedType::none, ImposedType::plane, ImposedType::sphere,
                                          ImposedType::cylinder, ImposedType::cone, ImposedType::quadric};
 
@@ -218,6 +253,12 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
                 if (strays[i] <= kRunAway * kRunAway * (least + allowed)) kept.push_back(candidates[i]);
             if (!kept.empty()) candidates.swap(kept);
         }
+    }
+    // Where the vertices stray from every candidate (noise, a remeshing), the scatter none
+    // of them explains bounds what a closer fit can tell: at most the best's own RMS.
+    if (options.imposed == ImposedType::none && s.scatter > 0 && !candidates.empty() && !(candidates.front().rms * candidates.front().rms <= exact2)) {
+        const auto simplest = simplest_within_scatter(candidates, std::min(s.scatter, candidates.front().rms));
+        std::rotate(candidates.begin(), simplest, simplest + 1);
     }
     const auto chosen = std::find_if(candidates.begin(), candidates.end(),
                                      [&](const TypedFit& c) { return of_type(c, options.imposed); });

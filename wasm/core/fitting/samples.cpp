@@ -20,18 +20,37 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
     return out;
 }
 
-Samples region_samples(const Model& model, const std::vector<int>& faces, const std::vector<double>* roughness) {
-    Samples out = vertex_samples(model.points, model.triangles, faces);
+namespace {
+
+// A median needs no more than a thousand faces, evenly strided.
+std::size_t median_stride(const std::vector<int>& faces) { return faces.size() / 1024 + 1; }
+
+// The median of a per-face value over the (sorted) faces, strided as region_samples does.
+double strided_median(const std::vector<int>& sorted, const std::vector<double>& values) {
+    std::vector<double> picked;
+    for (std::size_t i = 0; i < sorted.size(); i += median_stride(sorted)) picked.push_back(values[sorted[i]]);
+    if (picked.empty()) return 0;
+    std::nth_element(picked.begin(), picked.begin() + picked.size() / 2, picked.end());
+    return picked[picked.size() / 2];
+}
+
+std::vector<int> sorted_copy(const std::vector<int>& faces) {
     std::vector<int> sorted(faces);
     if (!std::is_sorted(sorted.begin(), sorted.end())) std::sort(sorted.begin(), sorted.end());
+    return sorted;
+}
+
+}  // namespace
+
+Samples region_samples(const Model& model, const std::vector<int>& faces, const std::vector<double>* roughness) {
+    Samples out = vertex_samples(model.points, model.triangles, faces);
+    const std::vector<int> sorted = sorted_copy(faces);
     const DualGraph& g = model.graph;
-    // A median needs no more than a thousand faces, evenly strided.
-    const std::size_t stride = sorted.size() / 1024 + 1;
-    std::vector<double> deviation, noise;
+    const std::size_t stride = median_stride(sorted);
+    std::vector<double> deviation;
     deviation.reserve(sorted.size() / stride + 1);
     for (std::size_t i = 0; i < sorted.size(); i += stride) {
         const int f = sorted[i];
-        if (roughness) noise.push_back((*roughness)[f]);
         double largest = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             const int h = g.neighbor[e];
@@ -43,15 +62,17 @@ Samples region_samples(const Model& model, const std::vector<int>& faces, const 
         out.midpoint_tolerances.resize(out.edge_midpoints.size(), largest);
         deviation.push_back(largest);
     }
-    if (!noise.empty()) {
-        std::nth_element(noise.begin(), noise.begin() + noise.size() / 2, noise.end());
-        out.noise = noise[noise.size() / 2];
-    }
+    if (roughness) out.noise = strided_median(sorted, *roughness);
     if (deviation.empty()) return out;
     const auto middle = deviation.begin() + deviation.size() / 2;
     std::nth_element(deviation.begin(), middle, deviation.end());
     out.tolerance = *middle;
     return out;
+}
+
+double region_scatter(const std::vector<int>& faces, const std::vector<double>& roughness, double tolerance) {
+    const double median = strided_median(sorted_copy(faces), roughness);
+    return std::sqrt(std::max(median * median - tolerance * tolerance, 0.0));
 }
 
 double taubin_rms(const Samples& s, const Quadric& q, double cap) {

@@ -31,6 +31,10 @@ struct Samples {
     // 0 otherwise. Model selection caps each point's distance at a few times this: beyond
     // it a point tells of a neighbouring face the region holds, not of the region's type.
     double noise = 0;
+    // The scatter of the points that no surface accounts for (region_scatter; 0 when
+    // unknown). Model selection does not prefer a quadric to an elementary type it departs
+    // from by less: a noisy cylinder is not a hyperboloid of waist 0.2 σ.
+    double scatter = 0;
     void add(const Vec3& p, double w) {
         points.push_back(p);
         weights.push_back(w);
@@ -51,6 +55,12 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
 // noisy mesh only) sets the samples' noise, the median over the same faces.
 Samples region_samples(const Model& model, const std::vector<int>& faces,
                        const std::vector<double>* roughness = nullptr);
+
+// The scatter of a region's vertices that no surface accounts for: the median roughness
+// of its faces (as region_samples takes it) beyond the tessellation's deviation,
+// √(r² − tolerance²): about 0.9 σ under noise, about 0 on a clean tessellation, coarse
+// or fine (its roughness is the sag the tolerance measures).
+double region_scatter(const std::vector<int>& faces, const std::vector<double>& roughness, double tolerance);
 
 // Σ of the points' moments, each of its weight: what a quadric fit of the points takes.
 inline Moments moments_of(const Samples& s) {

@@ -212,8 +212,11 @@ public:
         while (next_ < count && !refitted(next_)) ++next_;
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            const Samples vertices =
+            Samples vertices =
                 region_samples(model_, region_faces_[next_], state_.noisy ? state_.roughness.get() : nullptr);
+            // The refit alone types by the scatter: the seam simplifier weighs types to move
+            // faces, and a facet row along a tangent seam lies within the noise of both sides.
+            if (state_.roughness) vertices.scatter = region_scatter(region_faces_[next_], *state_.roughness, vertices.tolerance);
             ModelSelectionOptions selection = seams_.selection;
             selection.imposed = imposed(next_);
             try {
