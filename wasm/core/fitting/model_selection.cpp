@@ -65,12 +65,6 @@ double midpoint_mean_square(const Samples& s, const Quadric& q, bool beyond_tole
     return sum / s.edge_midpoints.size();
 }
 
-// The CAD surfaces: the types a part's faces are made of.
-bool elementary(const TypedFit& c) {
-    return c.special && (c.type == QuadricType::plane || c.type == QuadricType::sphere ||
-                         c.type == QuadricType::cylinder || c.type == QuadricType::cone);
-}
-
 // Among candidates sorted by the criterion, the simplest that departs from the first (the
 // best) by less than the samples' scatter: its mean square exceeds the best's by at most
 // scatter² (the best being the surface, the simpler one strays from it by that much). An
@@ -104,6 +98,11 @@ constexpr ImposedType kImposedTypes[] = {ImposedType::none, ImposedType::plane, 
                                          ImposedType::cylinder, ImposedType::cone, ImposedType::quadric};
 
 }  // namespace
+
+bool elementary(const TypedFit& c) {
+    return c.special && (c.type == QuadricType::plane || c.type == QuadricType::sphere ||
+                         c.type == QuadricType::cylinder || c.type == QuadricType::cone);
+}
 
 const char* imposed_type_name(ImposedType type) {
     switch (type) {

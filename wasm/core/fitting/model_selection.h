@@ -24,6 +24,10 @@ struct TypedFit {
     double bic = 0;
 };
 
+// A CAD surface: one of the plane, sphere, circular cylinder and circular cone fits (the
+// types a part's faces are made of).
+bool elementary(const TypedFit& c);
+
 struct ModelChoice {
     TypedFit chosen;
     std::optional<TypedFit> runner_up;  // the best candidate of another type

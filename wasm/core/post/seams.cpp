@@ -98,42 +98,64 @@ void SeamSimplifier::simplify(int a) {
         if (!(proxies_[b].area > 0)) continue;
         const double mse = regions_[b].error / proxies_[b].area;
         auto explained = [&](int f) { return evaluator_(f, b) <= options_.tolerance * mse * model_.areas[f]; };
-        // The faces of a reached from b across open edges, flooding while b explains them,
-        // up to `rings` faces deep.
-        std::vector<int> strip, depth;
-        double strip_area = 0;
-        bool too_large = false;
-        for (int f : regions_[a].faces)
-            for (int e = g.begin(f); e < g.end(f); ++e)
-                if (labels_[g.neighbor[e]] == b && link_open(e) && !in_strip_[f] && explained(f)) {
-                    in_strip_[f] = 1, strip.push_back(f), depth.push_back(1);
-                    break;
+        // The faces of a reached from b across open edges, flooding while `joins` them, up
+        // to `rings` faces deep; empty when it grows beyond max_fraction of a.
+        auto strip_from_b = [&](const auto& joins) {
+            std::vector<int> strip, depth;
+            double strip_area = 0;
+            bool too_large = false;
+            for (int f : regions_[a].faces)
+                for (int e = g.begin(f); e < g.end(f); ++e)
+                    if (labels_[g.neighbor[e]] == b && link_open(e) && !in_strip_[f] && joins(f)) {
+                        in_strip_[f] = 1, strip.push_back(f), depth.push_back(1);
+                        break;
+                    }
+            for (std::size_t k = 0; k < strip.size() && !too_large; ++k) {
+                strip_area += model_.areas[strip[k]];
+                too_large = strip_area > options_.max_fraction * proxies_[a].area;
+                for (int e = g.begin(strip[k]); e < g.end(strip[k]); ++e) {
+                    const int h = g.neighbor[e];
+                    if (labels_[h] != a || in_strip_[h] || !link_open(e) || !joins(h)) continue;
+                    if (depth[k] == options_.rings) continue;
+                    in_strip_[h] = 1, strip.push_back(h), depth.push_back(depth[k] + 1);
                 }
-        for (std::size_t k = 0; k < strip.size() && !too_large; ++k) {
-            strip_area += model_.areas[strip[k]];
-            too_large = strip_area > options_.max_fraction * proxies_[a].area;
-            for (int e = g.begin(strip[k]); e < g.end(strip[k]); ++e) {
-                const int h = g.neighbor[e];
-                if (labels_[h] != a || in_strip_[h] || !link_open(e) || !explained(h)) continue;
-                if (depth[k] == options_.rings) continue;
-                in_strip_[h] = 1, strip.push_back(h), depth.push_back(depth[k] + 1);
             }
-        }
-        for (int f : strip) in_strip_[f] = 0;
-        if (strip.empty() || too_large) continue;
+            for (int f : strip) in_strip_[f] = 0;
+            if (too_large) strip.clear();
+            return strip;
+        };
+        std::vector<int> strip = strip_from_b(explained);
+        // b may be no exact surface itself (a band of a torus fillet, which no quadric
+        // holds): then its surface explains none of a's faces. The strip is then a's faces
+        // next to b, judged below by b's surface refitted with them.
+        const bool by_refit = strip.empty();
+        if (by_refit) strip = strip_from_b([](int) { return true; });
+        if (strip.empty()) continue;
         // A strip that takes none of a's vertices leaves the vertices its selection judges
         // as they are: no simpler type (on coarse meshes, most one-face-deep strips).
         const std::vector<int> without_strip = faces_without(a, strip);
         if (keeps_every_vertex(without_strip, strip)) continue;
+        // By its refit only for a region that is, without the strip, exactly a quadric
+        // through its vertices (an exact CAD face): a free-form region never is, and the
+        // selections below are not spent on it.
+        if (by_refit) {
+            const Samples vertices = vertex_samples(model_.points, model_.triangles, without_strip);
+            if (!(taubin_rms(vertices, fit_taubin(moments_of(vertices)).quadric) <= kStoredPrecision)) continue;
+        }
         // Of those, the faces b explains better than a's surface without them does: a
         // band of a's own faces near the seam, within b's error, stays.
         const ModelChoice without = screen(without_strip);
         if (without.chosen.parameters >= choices_[a].chosen.parameters) continue;
+        if (by_refit && !elementary(without.chosen)) continue;
         FaceErrors rival;
         rival.reset(model_, {without.chosen.quadric});
         std::vector<int> kept_strip;
-        for (int f : strip)
-            if (evaluator_(f, b) < rival(f, 0)) kept_strip.push_back(f);
+        if (by_refit) {
+            kept_strip = refitted_strip(b, strip, rival);
+        } else {
+            for (int f : strip)
+                if (evaluator_(f, b) < rival(f, 0)) kept_strip.push_back(f);
+        }
         if (kept_strip.empty()) continue;
         strip = std::move(kept_strip);
         std::vector<int> rest = faces_without(a, strip);
@@ -174,6 +196,30 @@ void SeamSimplifier::simplify(int a) {
         queue_.push_back(b);
         if (choices_[a].chosen.parameters <= plane_parameters) return;
     }
+}
+
+std::vector<int> SeamSimplifier::refitted_strip(int b, const std::vector<int>& strip, FaceErrors& rival) const {
+    auto refitted_with = [&](const std::vector<int>& faces) {
+        Moments m = proxies_[b].moments;
+        for (int f : faces) add_to(m, model_.moments[f]);
+        FaceErrors e;
+        e.reset(model_, {fit_region(m, options_.lloyd.fit).quadric});
+        return e;
+    };
+    // The faces b's surface, refitted with the whole strip, holds better than a's without
+    // it (a's own faces beyond the seam stay); then b refitted with those.
+    FaceErrors first = refitted_with(strip);
+    std::vector<int> kept;
+    for (int f : strip)
+        if (first(f, 0) < rival(f, 0)) kept.push_back(f);
+    if (kept.empty()) return kept;
+    FaceErrors grown = refitted_with(kept);
+    double own = 0, with_b = 0, with_a = 0;
+    for (int f : regions_[b].faces) own += grown(f, 0);
+    for (int f : kept) with_b += grown(f, 0), with_a += rival(f, 0);
+    // b must hold its own faces about as well as before, and the strip better than a does.
+    if (!(own <= options_.tolerance * regions_[b].error) || !(with_b < with_a)) kept.clear();
+    return kept;
 }
 
 bool SeamSimplifier::reached_without_creases(int r, const std::vector<int>& before, std::size_t faces) {

@@ -68,6 +68,12 @@ private:
     // Whether the faces labelled r (`faces` of them) are all reached from those of `before`
     // still labelled r, across links that are no crease, without leaving r.
     bool reached_without_creases(int r, const std::vector<int>& before, std::size_t faces);
+    // Of a strip of faces next to region b, those b takes by its refit (an exact export's
+    // tangent seam beside a surface no quadric holds): the faces b's surface refitted with
+    // them holds better than `rival` (the giving region's surface without them), if b then
+    // holds its own faces within the tolerance and the faces, in sum, better than `rival`;
+    // else none.
+    std::vector<int> refitted_strip(int b, const std::vector<int>& strip, FaceErrors& rival) const;
     // Region r becomes these faces, of these moments, typed as `choice` says.
     void commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice);
     void measure(int r);  // regions_[r].error from evaluator_
