@@ -70,10 +70,10 @@ double midpoint_mean_square(const Samples& s, const Quadric& q, bool beyond_tole
 // scatter² (the best being the surface, the simpler one strays from it by that much). An
 // elementary type before a general quadric (the first elementary one by the criterion:
 // sphere and cylinder are not special cases of each other); a cylinder before a cone (the
-// cone of apex at infinity); a plane before anything. With a million vertices the
-// criterion resolves a quadric that bends away from a cylinder by a fifth of the noise,
-// as a remeshed or scanned cylinder's vertices do: a real difference, of the data, not
-// of the part.
+// cone of apex at infinity); a plane before anything. With thousands of vertices the
+// criterion resolves a quadric that bends away from a cylinder by a fraction of the noise,
+// as a remeshed or scanned cylinder's vertices do: a real difference, of the data, not of
+// the part.
 std::vector<TypedFit>::iterator simplest_within_scatter(std::vector<TypedFit>& candidates, double scatter) {
     const TypedFit& best = candidates.front();
     const double allowed = best.rms * best.rms + scatter * scatter;
@@ -255,7 +255,8 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     }
     // Where the vertices stray from every candidate (noise, a remeshing), the scatter none
     // of them explains bounds what a closer fit can tell: at most the best's own RMS.
-    if (options.imposed == ImposedType::none && s.scatter > 0 && !candidates.empty() && !(candidates.front().rms * candidates.front().rms <= exact2)) {
+    if (options.imposed == ImposedType::none && s.scatter > 0 && !candidates.empty() &&
+        !(candidates.front().rms * candidates.front().rms <= exact2)) {
         const auto simplest = simplest_within_scatter(candidates, std::min(s.scatter, candidates.front().rms));
         std::rotate(candidates.begin(), simplest, simplest + 1);
     }

@@ -28,7 +28,8 @@ std::size_t median_stride(const std::vector<int>& faces) { return faces.size() /
 // The median of a per-face value over the (sorted) faces, strided as region_samples does.
 double strided_median(const std::vector<int>& sorted, const std::vector<double>& values) {
     std::vector<double> picked;
-    for (std::size_t i = 0; i < sorted.size(); i += median_stride(sorted)) picked.push_back(values[sorted[i]]);
+    const std::size_t stride = median_stride(sorted);
+    for (std::size_t i = 0; i < sorted.size(); i += stride) picked.push_back(values[sorted[i]]);
     if (picked.empty()) return 0;
     std::nth_element(picked.begin(), picked.begin() + picked.size() / 2, picked.end());
     return picked[picked.size() / 2];

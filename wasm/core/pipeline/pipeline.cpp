@@ -216,7 +216,8 @@ public:
                 region_samples(model_, region_faces_[next_], state_.noisy ? state_.roughness.get() : nullptr);
             // The refit alone types by the scatter: the seam simplifier weighs types to move
             // faces, and a facet row along a tangent seam lies within the noise of both sides.
-            if (state_.roughness) vertices.scatter = region_scatter(region_faces_[next_], *state_.roughness, vertices.tolerance);
+            if (state_.roughness)
+                vertices.scatter = region_scatter(region_faces_[next_], *state_.roughness, vertices.tolerance);
             ModelSelectionOptions selection = seams_.selection;
             selection.imposed = imposed(next_);
             try {
