@@ -195,13 +195,13 @@ TEST(CadExtraction, TangentSeamStripsGoToTheCurvedSide) {
     }
 }
 
-TEST(CadExtraction, ACylinderBesideATorusFilletHoldsNoneOfIt) {
+TEST(CadExtraction, CylindersBesideTorusFilletsHoldNoneOfThem) {
     // A turned part: a base, a cylinder, a torus fillet (no quadric holds it) up to a plane
-    // shoulder, a neck. Automatically the fillet comes out in bands, and the cylinder's
-    // region held the fillet's first row of facets, which bent it into an ellipsoid: the
-    // band's quadric as fitted explained none of them, so the seam step kept them. Refitted
-    // with them, the band holds them better than the cylinder does, and its own faces
-    // about as well.
+    // shoulder, a concave one down to a neck, a top. Automatically each fillet comes out in
+    // bands, and each cylinder's region held its fillet's first row of facets, which bent
+    // it into an ellipsoid or a hyperboloid: the band's quadric as fitted explained none of
+    // them, so the seam step kept them. Those faces have vertices off the cylinder, and the
+    // band, refitted with them, holds its own faces about as well.
     std::vector<ProfilePoint> profile{{0, 0, 0}};
     add_segment(profile, 1.0, 0, 10, 0);
     add_segment(profile, 1.0, 0.8, 12, 1);
@@ -214,15 +214,18 @@ TEST(CadExtraction, ACylinderBesideATorusFilletHoldsNoneOfIt) {
     const Result r = test::approximate(part.mesh, counted(0));
     std::map<int, std::map<int, int>> patches;  // region → patch → faces
     for (std::size_t f = 0; f < part.patch.size(); ++f) ++patches[r.face_labels[f]][part.patch[f]];
-    int cylinders = 0;
-    for (const ProxyResult& p : r.proxies) {
-        if (!patches[p.id].count(1)) continue;
-        ++cylinders;
-        EXPECT_EQ(patches[p.id].size(), 1u) << "the cylinder's region holds faces of another patch";
-        EXPECT_EQ(p.type, QuadricType::cylinder) << type_name(p.type);
-        EXPECT_NEAR(p.shape.radius, 1.0, 1e-9);
+    for (const auto& [patch, radius] : {std::pair{1, 1.0}, std::pair{5, 0.3}}) {
+        SCOPED_TRACE("patch " + std::to_string(patch));
+        int regions = 0;
+        for (const ProxyResult& p : r.proxies) {
+            if (!patches[p.id].count(patch)) continue;
+            ++regions;
+            EXPECT_EQ(patches[p.id].size(), 1u) << "the cylinder's region holds faces of another patch";
+            EXPECT_EQ(p.type, QuadricType::cylinder) << type_name(p.type);
+            EXPECT_NEAR(p.shape.radius, radius, 1e-9);
+        }
+        EXPECT_EQ(regions, 1);
     }
-    EXPECT_EQ(cylinders, 1);
 }
 
 TEST(CadExtraction, CorpusWithTheAutomaticCount) {

@@ -1,5 +1,6 @@
 #include "post/seams.h"
 
+#include "fitting/distance.h"
 #include "fitting/face_errors.h"
 #include "fitting/least_squares.h"
 #include "geometry/features.h"
@@ -147,12 +148,12 @@ void SeamSimplifier::simplify(int a) {
         const ModelChoice without = screen(without_strip);
         if (without.chosen.parameters >= choices_[a].chosen.parameters) continue;
         if (by_refit && !elementary(without.chosen)) continue;
-        FaceErrors rival;
-        rival.reset(model_, {without.chosen.quadric});
         std::vector<int> kept_strip;
         if (by_refit) {
-            kept_strip = refitted_strip(b, strip, rival);
+            kept_strip = refitted_strip(b, strip, without.chosen.quadric);
         } else {
+            FaceErrors rival;
+            rival.reset(model_, {without.chosen.quadric});
             for (int f : strip)
                 if (evaluator_(f, b) < rival(f, 0)) kept_strip.push_back(f);
         }
@@ -198,27 +199,25 @@ void SeamSimplifier::simplify(int a) {
     }
 }
 
-std::vector<int> SeamSimplifier::refitted_strip(int b, const std::vector<int>& strip, FaceErrors& rival) const {
-    auto refitted_with = [&](const std::vector<int>& faces) {
-        Moments m = proxies_[b].moments;
-        for (int f : faces) add_to(m, model_.moments[f]);
-        FaceErrors e;
-        e.reset(model_, {fit_region(m, options_.lloyd.fit).quadric});
-        return e;
-    };
-    // The faces b's surface, refitted with the whole strip, holds better than a's without
-    // it (a's own faces beyond the seam stay); then b refitted with those.
-    FaceErrors first = refitted_with(strip);
+std::vector<int> SeamSimplifier::refitted_strip(int b, const std::vector<int>& strip, const Quadric& surface) const {
+    // The strip's faces with a vertex off the giving region's exact surface: not of it.
+    const double hessian_norm = surface.hessian_norm();
     std::vector<int> kept;
     for (int f : strip)
-        if (first(f, 0) < rival(f, 0)) kept.push_back(f);
+        for (int v : model_.triangles[f])
+            if (taubin_distance(surface, hessian_norm, model_.points[v]) > kStoredPrecision) {
+                kept.push_back(f);
+                break;
+            }
     if (kept.empty()) return kept;
-    FaceErrors grown = refitted_with(kept);
-    double own = 0, with_b = 0, with_a = 0;
+    Moments m = proxies_[b].moments;
+    for (int f : kept) add_to(m, model_.moments[f]);
+    FaceErrors grown;
+    grown.reset(model_, {fit_region(m, options_.lloyd.fit).quadric});
+    double own = 0;
     for (int f : regions_[b].faces) own += grown(f, 0);
-    for (int f : kept) with_b += grown(f, 0), with_a += rival(f, 0);
-    // b must hold its own faces about as well as before, and the strip better than a does.
-    if (!(own <= options_.tolerance * regions_[b].error) || !(with_b < with_a)) kept.clear();
+    // b must hold its own faces about as well as before.
+    if (!(own <= options_.tolerance * regions_[b].error)) kept.clear();
     return kept;
 }
 

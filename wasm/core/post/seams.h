@@ -38,8 +38,9 @@ struct SeamOptions {
 // when without them it selects a type of fewer parameters and the neighbour keeps its
 // type: the same fit, fewer parameters. Beside a neighbour that explains none of them (a
 // band of a torus fillet, which no quadric holds), a region that without them is exactly a
-// plane, sphere, cylinder or cone gives the faces the neighbour, refitted with them, holds
-// better, when it then holds its own about as well: about the same fit, a CAD face.
+// plane, sphere, cylinder or cone gives the faces with a vertex off that surface, when the
+// neighbour, refitted with them, holds its own about as well: a CAD face holds only faces
+// on it.
 // A region may also bend over a plane and part of the curved face beside it, its neighbour
 // holding the rest of that face (a plane, half a fillet) while the noise hides the bend:
 // when the region is explained by its noise and the half of it farthest from the neighbour
@@ -71,11 +72,10 @@ private:
     // Whether the faces labelled r (`faces` of them) are all reached from those of `before`
     // still labelled r, across links that are no crease, without leaving r.
     bool reached_without_creases(int r, const std::vector<int>& before, std::size_t faces);
-    // Of a strip of faces next to region b, those b takes by its refit (b being no exact
-    // surface: a band of a torus fillet): the faces b's surface refitted with them holds
-    // better than `rival` (the giving region's surface without them), if b then holds its
-    // own faces within the tolerance and the faces, in sum, better than `rival`; else none.
-    std::vector<int> refitted_strip(int b, const std::vector<int>& strip, FaceErrors& rival) const;
+    // Of a strip of faces next to region b (b being no exact surface: a band of a torus
+    // fillet), those with a vertex off `surface` (the giving region's exact surface without
+    // them), if b, refitted with them, holds its own faces within the tolerance; else none.
+    std::vector<int> refitted_strip(int b, const std::vector<int>& strip, const Quadric& surface) const;
     // Region r becomes these faces, of these moments, typed as `choice` says.
     void commit(int r, std::vector<int> faces, const Moments& moments, const ModelChoice& choice);
     void measure(int r);  // regions_[r].error from evaluator_
