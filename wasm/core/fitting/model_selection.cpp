@@ -65,32 +65,34 @@ double midpoint_mean_square(const Samples& s, const Quadric& q, bool beyond_tole
     return sum / s.edge_midpoints.size();
 }
 
-// Among candidates sorted by the criterion, the simplest that departs from the first (the
-// best) by less than the samples' scatter: its mean square exceeds the best's by at most
-// scatter² (the best being the surface, the simpler one strays from it by that much). An
-// elementary type before a general quadric (the first elementary one by the criterion:
-// sphere and cylinder are not special cases of each other); a cylinder before a cone (the
-// cone of apex at infinity); a plane before anything. With thousands of vertices the
+// Among candidates sorted by the criterion, the simplest reached from the first (the best)
+// by steps that each depart from the type they replace by less than the samples' scatter:
+// a mean square at most scatter² above it (the replaced type being the surface, the simpler
+// one strays from it by that much). An elementary type replaces a general quadric (the
+// first elementary one by the criterion: sphere and cylinder are not special cases of each
+// other); a cylinder a cone (the cone of apex at infinity); a plane anything. Each step asks
+// whether the data resolve the freedom the replaced type has over the simpler one, as
+// nested models are tested one step down at a time. With thousands of vertices the
 // criterion resolves a quadric that bends away from a cylinder by a fraction of the noise,
 // as a remeshed or scanned cylinder's vertices do: a real difference, of the data, not of
 // the part.
 std::vector<TypedFit>::iterator simplest_within_scatter(std::vector<TypedFit>& candidates, double scatter) {
-    const TypedFit& best = candidates.front();
-    const double allowed = best.rms * best.rms + scatter * scatter;
-    auto admitted = [&](QuadricType type) {
+    auto within = [&](std::vector<TypedFit>::iterator from, QuadricType type) {
+        const double allowed = from->rms * from->rms + scatter * scatter;
         return std::find_if(candidates.begin(), candidates.end(), [&](const TypedFit& c) {
             return elementary(c) && c.type == type && c.rms * c.rms <= allowed;
         });
     };
     auto simplest = candidates.begin();
-    if (!elementary(best)) {
+    if (!elementary(*simplest)) {
+        const double allowed = simplest->rms * simplest->rms + scatter * scatter;
         const auto e = std::find_if(candidates.begin(), candidates.end(),
                                     [&](const TypedFit& c) { return elementary(c) && c.rms * c.rms <= allowed; });
         if (e != candidates.end()) simplest = e;
     }
-    if (simplest->type == QuadricType::cone && admitted(QuadricType::cylinder) != candidates.end())
-        simplest = admitted(QuadricType::cylinder);
-    if (admitted(QuadricType::plane) != candidates.end()) simplest = admitted(QuadricType::plane);
+    if (simplest->type == QuadricType::cone && within(simplest, QuadricType::cylinder) != candidates.end())
+        simplest = within(simplest, QuadricType::cylinder);
+    if (within(simplest, QuadricType::plane) != candidates.end()) simplest = within(simplest, QuadricType::plane);
     return simplest;
 }
 
