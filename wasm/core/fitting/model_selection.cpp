@@ -77,22 +77,19 @@ double midpoint_mean_square(const Samples& s, const Quadric& q, bool beyond_tole
 // as a remeshed or scanned cylinder's vertices do: a real difference, of the data, not of
 // the part.
 std::vector<TypedFit>::iterator simplest_within_scatter(std::vector<TypedFit>& candidates, double scatter) {
-    auto within = [&](std::vector<TypedFit>::iterator from, QuadricType type) {
-        const double allowed = from->rms * from->rms + scatter * scatter;
-        return std::find_if(candidates.begin(), candidates.end(), [&](const TypedFit& c) {
-            return elementary(c) && c.type == type && c.rms * c.rms <= allowed;
-        });
-    };
     auto simplest = candidates.begin();
-    if (!elementary(*simplest)) {
+    // One step down: to the first elementary candidate `admits` takes within the scatter of
+    // the type it replaces.
+    auto step_down = [&](auto admits) {
         const double allowed = simplest->rms * simplest->rms + scatter * scatter;
-        const auto e = std::find_if(candidates.begin(), candidates.end(),
-                                    [&](const TypedFit& c) { return elementary(c) && c.rms * c.rms <= allowed; });
-        if (e != candidates.end()) simplest = e;
-    }
-    if (simplest->type == QuadricType::cone && within(simplest, QuadricType::cylinder) != candidates.end())
-        simplest = within(simplest, QuadricType::cylinder);
-    if (within(simplest, QuadricType::plane) != candidates.end()) simplest = within(simplest, QuadricType::plane);
+        const auto to = std::find_if(candidates.begin(), candidates.end(), [&](const TypedFit& c) {
+            return elementary(c) && admits(c) && c.rms * c.rms <= allowed;
+        });
+        if (to != candidates.end()) simplest = to;
+    };
+    if (!elementary(*simplest)) step_down([](const TypedFit&) { return true; });
+    if (simplest->type == QuadricType::cone) step_down([](const TypedFit& c) { return c.type == QuadricType::cylinder; });
+    step_down([](const TypedFit& c) { return c.type == QuadricType::plane; });
     return simplest;
 }
 
