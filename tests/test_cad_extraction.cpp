@@ -466,6 +466,27 @@ TEST(CadExtraction, AHexNutsCountersinksAreConesAtItsFaceCount) {
     EXPECT_EQ(cones, 2);
 }
 
+TEST(CadExtraction, APencilAtItsFaceCountIsItsFaces) {
+    // Beyond the corpus: a cylinder sharpened to a cone's apex, irregularly meshed; the bend
+    // between them (27°) is below the crease angle, so one chart holds both. Grown to its 3
+    // proxies, Lloyd settled with an ellipsoid over the cylinder and half the cone, and the
+    // teleport to the worst face did not pay; one more, to the faces turned away from their
+    // region's surface, finds the cone.
+    for (const CorpusCase& c : cad_corpus({"pencil"})) {
+        if (c.variant != "irregular") continue;
+        const Part part = make_part(c.part, c.options);
+        const Outcome o = run(part, counted(3, c.options.seed));
+        EXPECT_GE(o.accuracy, 0.99);
+        std::set<QuadricType> types;
+        for (const ProxyResult& p : o.result.proxies) {
+            types.insert(p.type);
+            if (p.type == QuadricType::cylinder) EXPECT_NEAR(p.shape.radius, 0.3, 1e-6);
+            if (p.type == QuadricType::cone) EXPECT_NEAR(p.shape.half_angle, std::atan(0.5), 1e-6);
+        }
+        EXPECT_EQ(types, (std::set<QuadricType>{QuadricType::plane, QuadricType::cylinder, QuadricType::cone}));
+    }
+}
+
 TEST(CadExtraction, AHexNutsCountersinksAreFoundAutomatically) {
     // The four bends and the rings beside them hold 63 % of the nut's chart: its noise
     // estimate was a bend's, 3.3e-3 of the size on an exact mesh, and a cone with two rows of

@@ -921,6 +921,51 @@ Part chamfered_box(const PartOptions& o) {
     return b.finish("chamfered_box");
 }
 
+// A thin-walled tube, its wall 8 % of its radius: outer and inner cylinder, two annular
+// ends (4 faces). The two coaxial cylinders lie a few noise widths apart.
+Part tube(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R = 0.5, r = 0.46, L = 1.5;
+    const int outer = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
+    const int bore = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), r));
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, L}, Vec3::UnitZ()));
+    std::vector<Vec3> outer_ring;
+    for (double t : b.spacing(b.count(64))) outer_ring.emplace_back(R * portable::cos(2 * kPi * t), R * portable::sin(2 * kPi * t), 0);
+    outer_ring.pop_back();  // a closed loop: 2π is 0
+    const auto inner_ring = onto_circle(outer_ring, Vec3::Zero(), r);
+    b.band(outer_ring, at_height(outer_ring, L), b.count(16), true, outer);
+    b.band(at_height(outer_ring, L), at_height(inner_ring, L), b.count(1), true, top);
+    b.band(at_height(inner_ring, L), inner_ring, b.count(16), true, bore);
+    b.band(inner_ring, outer_ring, b.count(1), true, bottom);
+    return b.finish("tube");
+}
+
+// A pencil: a cylinder on a flat end, sharpened to a cone's apex (3 faces).
+Part pencil(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R = 0.3, L = 1.6, tip = 0.6;
+    const int end = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int side = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
+    const int cone = b.surface({QuadricType::cone, Vec3(0, 0, L + tip), -Vec3::UnitZ(), 0, std::atan(R / tip)});
+    std::vector<Vec3> ring;
+    for (double t : b.spacing(b.count(48))) ring.emplace_back(R * portable::cos(2 * kPi * t), R * portable::sin(2 * kPi * t), 0);
+    ring.pop_back();
+    b.fill(ring, Vec3::Zero(), b.count(5), end);
+    b.band(ring, at_height(ring, L), b.count(16), true, side);
+    // Rings towards the apex, shrinking linearly along the cone's generators, then a fan.
+    const int rows = b.count(8);
+    std::vector<Vec3> previous = at_height(ring, L);
+    for (int i = 1; i < rows; ++i) {
+        const double s = 1 - double(i) / rows;
+        std::vector<Vec3> next;
+        for (const Vec3& p : ring) next.emplace_back(s * p.x(), s * p.y(), L + (1 - s) * tip);
+        b.band(previous, next, 1, true, cone);
+        previous = next;
+    }
+    b.fan(previous, Vec3(0, 0, L + tip), cone);
+    return b.finish("pencil");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -933,6 +978,8 @@ std::vector<std::string> part_names() {
     names.push_back("plate_assembly");
     names.push_back("hex_nut");
     names.push_back("chamfered_box");
+    names.push_back("tube");
+    names.push_back("pencil");
     return names;
 }
 
@@ -952,6 +999,8 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "plate_assembly") return plate_assembly(options);
     if (name == "hex_nut") return hex_nut(options);
     if (name == "chamfered_box") return chamfered_box(options);
+    if (name == "tube") return tube(options);
+    if (name == "pencil") return pencil(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 

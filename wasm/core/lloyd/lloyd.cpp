@@ -438,9 +438,16 @@ void Lloyd::judge_teleport() {
     // that pays may only have moved the misfit (the noisy stepped shaft at seed offset 1
     // paid with two and found its faces with four more).
     if (pays) return;
-    // The teleport did not pay: go back, and stop trying (the same move would be chosen again).
+    // The teleport did not pay: go back, and stop trying (the same move would be chosen
+    // again). But that the worst face is no place for a proxy does not make the partition
+    // right: a region bent over two surfaces of one chart has its worst face where its
+    // quadric strays, and the faces turned away from their region's surface tell where the
+    // second surface lies (the irregular pencil at its count of 3: an ellipsoid over the
+    // cylinder and half the cone, 25 times the error of its faces). One teleport there. On
+    // a noisy mesh the wide teleports below go there first.
     restore(snapshot_);
     teleports_left_ = 0;
+    if (!noisy_ && !misfit_teleport_tried_) teleports_left_ = 1, misfit_teleport_ = true;
 }
 
 void Lloyd::restore(const Snapshot& snapshot) {
@@ -460,7 +467,16 @@ void Lloyd::decide_at_target() {
     }
     if (teleports_left_ > 0) {
         snapshot_ = {labels_, proxies_, energy_};
-        if (insert_farthest(1) == 1) {
+        int added = 0;
+        if (misfit_teleport_) {
+            misfit_teleport_ = false, misfit_teleport_tried_ = true;
+            added = insert_into_charts(1);
+            if (added == 0) added = insert_into_clusters(1);
+            if (added == 0) teleports_left_ = 0;
+        } else {
+            added = insert_farthest(1);
+        }
+        if (added == 1) {
             --teleports_left_;
             teleport_pending_ = true;
             return start_operation(Operation::teleport);

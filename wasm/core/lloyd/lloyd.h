@@ -431,6 +431,8 @@ private:
     int unpaid_repairs_ = 0;                     // repairs in a row that did not pay
     bool iterating_ = false;
     bool teleport_pending_ = false;
+    bool misfit_teleport_ = false;        // the next teleport goes to a misfit chart or cluster
+    bool misfit_teleport_tried_ = false;  // one has (after a farthest-point one did not pay)
     int wide_teleport_ = 0;    // proxies the next wide teleport inserts
     bool wide_pending_ = false;      // the pending teleport is a wide one
     double wide_unexplained_ = 0;    // unexplained() before it
