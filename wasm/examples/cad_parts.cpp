@@ -966,6 +966,88 @@ Part pencil(const PartOptions& o) {
     return b.finish("pencil");
 }
 
+// A block under a low roof: two roof planes 10° off the horizontal meet along a ridge,
+// bending by 20° (below the crease angle: one chart holds both); 7 faces.
+Part roof_block(const PartOptions& o) {
+    PartBuilder b(o);
+    const double W = 2, D = 1.2, H = 0.6, pitch = 10 * kPi / 180, Hr = H + W / 2 * std::tan(pitch);
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int left = b.surface(plane({0, 0, 0}, -Vec3::UnitX())), right = b.surface(plane({W, 0, 0}, Vec3::UnitX()));
+    const int front = b.surface(plane({0, 0, 0}, -Vec3::UnitY())), back = b.surface(plane({0, D, 0}, Vec3::UnitY()));
+    const int roof_left = b.surface(plane({0, 0, H}, Vec3(-std::sin(pitch), 0, std::cos(pitch))));
+    const int roof_right = b.surface(plane({W, 0, H}, Vec3(std::sin(pitch), 0, std::cos(pitch))));
+    const Vec3 b00(0, 0, 0), b10(W, 0, 0), b11(W, D, 0), b01(0, D, 0);
+    const Vec3 e00(0, 0, H), e10(W, 0, H), e11(W, D, H), e01(0, D, H), r0(W / 2, 0, Hr), r1(W / 2, D, Hr);
+    const int nx = b.count(20), ny = b.count(12), nz = b.count(6);
+    auto reversed = [](std::vector<Vec3> v) { return std::vector<Vec3>(v.rbegin(), v.rend()); };
+    // Every edge once, shared by the two faces on either side of it.
+    const auto bx0 = b.segment(b00, b10, nx), bx1 = b.segment(b01, b11, nx);
+    const auto by0 = b.segment(b00, b01, ny), by1 = b.segment(b10, b11, ny);
+    const auto z00 = b.segment(b00, e00, nz), z10 = b.segment(b10, e10, nz), z11 = b.segment(b11, e11, nz),
+               z01 = b.segment(b01, e01, nz);
+    const auto eave0 = b.segment(e00, e01, ny), eave1 = b.segment(e10, e11, ny), ridge = b.segment(r0, r1, ny);
+    const auto f0 = b.segment(e00, r0, nx / 2), f1 = b.segment(r0, e10, nx / 2);  // the front gable
+    const auto k0 = b.segment(e01, r1, nx / 2), k1 = b.segment(r1, e11, nx / 2);  // the back gable
+    auto face = [&](std::initializer_list<std::vector<Vec3>> pieces, int label) {
+        std::vector<Vec3> loop;
+        Vec3 centre = Vec3::Zero();
+        for (const auto& piece : pieces) append_open(loop, piece);
+        for (const Vec3& p : loop) centre += p;
+        b.fill(loop, centre / loop.size(), b.count(6), label);
+    };
+    face({bx0, by1, reversed(bx1), reversed(by0)}, bottom);
+    face({by0, z01, reversed(eave0), reversed(z00)}, left);
+    face({by1, z11, reversed(eave1), reversed(z10)}, right);
+    face({bx0, z10, reversed(f1), reversed(f0), reversed(z00)}, front);
+    face({bx1, z11, reversed(k1), reversed(k0), reversed(z01)}, back);
+    face({f0, ridge, reversed(k0), reversed(eave0)}, roof_left);
+    face({f1, eave1, reversed(k1), reversed(ridge)}, roof_right);
+    return b.finish("roof_block");
+}
+
+// A plate with a hole drilled 35° off its normal: the hole meets both faces along ellipses;
+// 7 faces.
+Part oblique_hole(const PartOptions& o) {
+    PartBuilder b(o);
+    const double W = 2, T = 0.3, r = 0.3, tilt = 35 * kPi / 180;
+    const Vec3 axis(std::sin(tilt), 0, std::cos(tilt));
+    const Vec3 centre(W / 2, W / 2, 0);  // where the axis meets the bottom face
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, T}, Vec3::UnitZ()));
+    const int hole = b.surface(cylinder(centre, axis, r));
+    std::vector<int> side;
+    const Vec3 corners[4] = {{0, 0, 0}, {W, 0, 0}, {W, W, 0}, {0, W, 0}};
+    std::vector<Vec3> outline;
+    std::vector<int> outline_face;
+    for (int k = 0; k < 4; ++k) {
+        const Vec3 &from = corners[k], &to = corners[(k + 1) % 4];
+        side.push_back(b.surface(plane(from, (to - from).cross(Vec3::UnitZ()).normalized())));
+        const auto edge = b.segment(from, to, b.count(16));
+        append_open(outline, edge);
+        outline_face.insert(outline_face.end(), edge.size() - 1, side.back());
+    }
+    // The hole's section by a plane z = const is an ellipse about the axis's point there,
+    // r / cos(tilt) along x and r along y: each outline point's ray meets it once.
+    auto ellipse = [&](double z) {
+        const Vec3 c = centre + axis * (z / axis.z());
+        std::vector<Vec3> out;
+        for (const Vec3& p : outline) {
+            const Vec3 d = (Vec3(p.x(), p.y(), 0) - Vec3(c.x(), c.y(), 0)).normalized();
+            const double a = r / std::cos(tilt), rho = 1 / std::sqrt(d.x() * d.x() / (a * a) + d.y() * d.y() / (r * r));
+            out.push_back(Vec3(c.x(), c.y(), z) + rho * d);
+        }
+        return out;
+    };
+    const auto hole_top = ellipse(T);
+    // The bottom ellipse point on the same generator as each top one.
+    std::vector<Vec3> hole_bottom;
+    for (const Vec3& p : hole_top) hole_bottom.push_back(p - axis * (T / axis.z()));
+    b.band(outline, hole_bottom, b.count(8), true, bottom);
+    b.band(at_height(outline, T), hole_top, b.count(8), true, top);
+    b.band(hole_bottom, hole_top, b.count(4), true, hole);
+    b.band(outline, at_height(outline, T), b.count(3), true, [&](int j) { return outline_face[j]; });
+    return b.finish("oblique_hole");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -980,6 +1062,8 @@ std::vector<std::string> part_names() {
     names.push_back("chamfered_box");
     names.push_back("tube");
     names.push_back("pencil");
+    names.push_back("roof_block");
+    names.push_back("oblique_hole");
     return names;
 }
 
@@ -1001,6 +1085,8 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "chamfered_box") return chamfered_box(options);
     if (name == "tube") return tube(options);
     if (name == "pencil") return pencil(options);
+    if (name == "roof_block") return roof_block(options);
+    if (name == "oblique_hole") return oblique_hole(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 
