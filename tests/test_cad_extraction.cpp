@@ -241,6 +241,20 @@ TEST(CadExtraction, CorpusWithTheAutomaticCount) {
     expect_corpus_scores(runs, corpus);
 }
 
+TEST(CadExtraction, ShapesBeyondTheCorpusAreTheirFacesAutomatically) {
+    // A thin tube, a pencil (a cone sharpened from its cylinder, one chart), a roof bending
+    // 20° at its ridge (one chart), a hole drilled 35° off a plate's normal: clean, noisy
+    // and irregular, the automatic count is the face count and each region one face.
+    for (const CorpusCase& c : cad_corpus({"tube", "pencil", "roof_block", "oblique_hole"})) {
+        SCOPED_TRACE(c.part + " " + c.variant);
+        const Part part = make_part(c.part, c.options);
+        const Outcome o = run(part, counted(0, c.options.seed));
+        EXPECT_EQ(o.regions, static_cast<int>(part.surfaces.size()));
+        EXPECT_GE(o.accuracy, 0.999);
+        EXPECT_EQ(o.two_part, 0);
+    }
+}
+
 TEST(CadExtraction, ThinPlateFacesAreTwoPlanesAndToleranceRunsAreValid) {
     // A plate 0.5 % of its size thick: its two sides are two plane regions facing away
     // from each other, at the automatic count and under a tolerance alike.
