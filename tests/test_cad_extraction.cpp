@@ -255,6 +255,25 @@ TEST(CadExtraction, ShapesBeyondTheCorpusAreTheirFacesAutomatically) {
     }
 }
 
+TEST(CadExtraction, ACoarseTubesEndsAreChartsOfTheirOwn) {
+    // A tube meshed with 16 facets round: each end is one row of triangles a wall thick,
+    // too narrow for the noise the facets' curvature reads as, and took the chart of the
+    // cylinder beside it. An exact tessellation has no noise: the ends are charts of their own,
+    // and at its count and automatically the tube is its four faces.
+    for (const CorpusCase& c : cad_corpus({"tube"})) {
+        if (c.variant == "noisy") continue;
+        SCOPED_TRACE(c.variant);
+        PartOptions options = c.options;
+        options.detail = 0.25;
+        const Part part = make_part(c.part, options);
+        for (int proxies : {4, 0}) {
+            const Outcome o = run(part, counted(proxies, c.options.seed));
+            EXPECT_EQ(o.regions, 4);
+            EXPECT_GE(o.accuracy, 0.999) << proxies << " proxies";
+        }
+    }
+}
+
 TEST(CadExtraction, ThinPlateFacesAreTwoPlanesAndToleranceRunsAreValid) {
     // A plate 0.5 % of its size thick: its two sides are two plane regions facing away
     // from each other, at the automatic count and under a tolerance alike.

@@ -231,12 +231,25 @@ std::vector<char> find_creases(const DualGraph& g, const std::vector<Vec3>& norm
 
 // Charts: reliable faces joined by edges that are not creases. Unreliable faces join no
 // two faces (a chain of them along a crease would bridge it); afterwards each takes the
-// chart of the nearest reliable face, breadth first.
-void find_charts(const DualGraph& g, const std::vector<char>& reliable, Features& out) {
+// chart of the nearest reliable face, breadth first. But in an `exact` tessellation, whose
+// faces no noise turned, unreliable faces joined among themselves and to no reliable one
+// (creases all round) are a chart of their own: a tube's end, a wall thick, meshed with
+// one row of triangles between its two circles.
+void find_charts(const DualGraph& g, const std::vector<char>& reliable, bool exact, Features& out) {
     const int n = static_cast<int>(reliable.size());
     out.chart.assign(n, -1);
     auto not_crease = [&](int, int link) { return !out.crease[link]; };
     out.chart_count = label_components(g, out.chart, 0, [&](int f) { return reliable[f] != 0; }, not_crease);
+    if (exact) {
+        std::vector<int> piece(n, -1);
+        const int pieces = label_components(g, piece, 0, [&](int f) { return !reliable[f]; }, not_crease);
+        std::vector<char> joined(pieces, 0);
+        for (int f = 0; f < n; ++f)
+            for (int e = g.begin(f); e < g.end(f) && piece[f] >= 0; ++e)
+                if (!out.crease[e] && reliable[g.neighbor[e]]) joined[piece[f]] = 1;
+        out.chart_count = label_components(g, out.chart, out.chart_count,
+                                           [&](int f) { return piece[f] >= 0 && !joined[piece[f]]; }, not_crease);
+    }
     std::vector<int> queue;
     for (int f = 0; f < n; ++f)
         if (out.chart[f] >= 0) queue.push_back(f);
@@ -491,8 +504,8 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         for (int e = g.begin(f); e < g.end(f); ++e)
             if (f < g.neighbor[e]) link_angle.push_back(turn(g, raw, f, e));
     int rings = 0;
-    auto exact_tessellation = [&] { return exact_groups(model, std::vector<int>(n, 0), 1)[0] != 0; };
-    if (median(std::move(link_angle)) > options.filter_range && !exact_tessellation()) {
+    const bool exact_mesh = exact_groups(model, std::vector<int>(n, 0), 1)[0] != 0;
+    if (median(std::move(link_angle)) > options.filter_range && !exact_mesh) {
         noise = std::max(noise, levels.all);
         // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
         const double ratio = 2 * noise / (0.5 * options.filter_range * median(altitude));
@@ -511,7 +524,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     }
     out.normals = filter_normals(g, start, range, options.filter_iterations);
     out.crease = find_creases(g, out.normals, options.crease_angle);
-    find_charts(g, reliable, out);
+    find_charts(g, reliable, exact_mesh, out);
     const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
     const std::vector<char> exact = exact_groups(model, out.chart, out.chart_count);
     std::vector<double> per_chart = chart_roughness(deviations, out.chart_count, {}, exact);
