@@ -135,6 +135,18 @@ public:
         fan(inner, center, label);
     }
 
+    // A cap: from the loop `previous`, the rings next(1) … next(rows − 1) joined pairwise,
+    // then a fan to `apex` (a hemisphere's latitude rings, a cone's rings to its tip).
+    template <class NextRing>
+    void cap(std::vector<Vec3> previous, int rows, NextRing next, const Vec3& apex, int label) {
+        for (int i = 1; i < rows; ++i) {
+            std::vector<Vec3> ring = next(i);
+            band(previous, ring, 1, true, label);
+            previous = std::move(ring);
+        }
+        fan(previous, apex, label);
+    }
+
     // Triangles from every segment of the loop to `apex`.
     void fan(const std::vector<Vec3>& loop, const Vec3& apex, int label) {
         const int c = vertex(apex), m = static_cast<int>(loop.size());
@@ -429,16 +441,12 @@ Part stepped_shaft(const PartOptions& o) {
     b.band(r2_bottom, r2_top, b.count(8), true, cyl2);
     b.band(r2_top, r3_bottom, b.count(3), true, chamfer);
     b.band(r3_bottom, r3_top, b.count(7), true, cyl3);
-    // The hemisphere: exact latitude rings joined pairwise, a fan at the pole.
-    std::vector<Vec3> previous = r3_top;
+    // The hemisphere: exact latitude rings, a fan at the pole.
     const std::vector<double> lat = b.spacing(b.count(10));
-    for (std::size_t i = 1; i + 1 < lat.size(); ++i) {
+    b.cap(r3_top, static_cast<int>(lat.size()) - 1, [&](int i) {
         const double a = lat[i] * kPi / 2;
-        const std::vector<Vec3> next = ring(R3 * portable::cos(a), z4 + R3 * portable::sin(a));
-        b.band(previous, next, 1, true, ball);
-        previous = next;
-    }
-    b.fan(previous, Vec3(0, 0, z4 + R3), ball);
+        return ring(R3 * portable::cos(a), z4 + R3 * portable::sin(a));
+    }, Vec3(0, 0, z4 + R3), ball);
     return b.finish("stepped_shaft");
 }
 
@@ -952,17 +960,14 @@ Part pencil(const PartOptions& o) {
     ring.pop_back();
     b.fill(ring, Vec3::Zero(), b.count(5), end);
     b.band(ring, at_height(ring, L), b.count(16), true, side);
-    // Rings towards the apex, shrinking linearly along the cone's generators, then a fan.
+    // Rings towards the apex, shrinking linearly along the cone's generators.
     const int rows = b.count(8);
-    std::vector<Vec3> previous = at_height(ring, L);
-    for (int i = 1; i < rows; ++i) {
+    b.cap(at_height(ring, L), rows, [&](int i) {
         const double s = 1 - double(i) / rows;
         std::vector<Vec3> next;
         for (const Vec3& p : ring) next.emplace_back(s * p.x(), s * p.y(), L + (1 - s) * tip);
-        b.band(previous, next, 1, true, cone);
-        previous = next;
-    }
-    b.fan(previous, Vec3(0, 0, L + tip), cone);
+        return next;
+    }, Vec3(0, 0, L + tip), cone);
     return b.finish("pencil");
 }
 
