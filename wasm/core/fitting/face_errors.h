@@ -23,12 +23,16 @@ public:
         known_errors_ = &errors;
     }
     double operator()(int face, int proxy) {
-        if (known_labels_ && (*known_labels_)[face] == proxy) return (*known_errors_)[face];
+        if (known_proxy(face) == proxy) return (*known_errors_)[face];
         return compute(face, proxy);
     }
+    // The proxy whose error at `face` is known (-1: none), and that error.
+    int known_proxy(int face) const { return known_labels_ ? (*known_labels_)[face] : -1; }
+    double known_error(int face) const { return (*known_errors_)[face]; }
+    // d(face, proxy), evaluated (known errors aside).
+    double compute(int face, int proxy);
 
 private:
-    double compute(int face, int proxy);
     double vertex_distance2(int vertex, int proxy);
 
     const Model* model_ = nullptr;

@@ -25,28 +25,34 @@ public:
              const std::vector<char>* crease = nullptr);
 
 private:
-    struct Entry {
-        // Whether a crease was crossed (the float's free sign bit), the error as float
-        // bits (monotone for non-negative floats), the face index, then the proxy: a
-        // strict total order, so every heap pops the same sequence and native and WASM
-        // builds agree.
-        std::uint64_t key;
-        int proxy;
-        bool operator>(const Entry& o) const { return key != o.key ? key > o.key : proxy > o.proxy; }
+    // A face is queued under the key: whether a crease was crossed (the float's free sign
+    // bit), the error as float bits (monotone for non-negative floats), the face index;
+    // ties between proxies go to the lower one. A strict total order, so every run takes
+    // faces in the same sequence and native and WASM builds agree.
+    //
+    // Only a key below every key the face was queued under before goes into the heap: a
+    // larger one would come out after the face was taken. So the heap holds keys alone,
+    // and the proxy of a face's least key is kept with the face.
+    struct Face {
+        std::uint64_t best;  // least key queued (~0: none)
+        int proxy;           // whose key `best` is
+        int label;           // -1 until taken
+        // The error already at hand (FaceErrors' known one: against the face's region
+        // before this run), as float bits.
+        int known_proxy;
+        std::uint32_t known_bits;
     };
-    void push(const Entry& e);
-    Entry pop();
+    void push(std::uint64_t key);
+    std::uint64_t pop();
 
-    // Entries below heap_'s top when queued go to the small near_ heap instead (pops take
-    // the least of both tops: the same order). Neighbours of the face just taken often have
+    // Per face in one record: the flood visits faces in no spatial order, and each visit
+    // then costs one cache line instead of one per array.
+    std::vector<Face> faces_;
+    // Keys below heap_'s top when queued go to the small near_ heap instead (pops take the
+    // least of both tops: the same order). Neighbours of the face just taken often have
     // errors as low as it had, and are taken next: they skip the deep heap.
-    std::vector<Entry> heap_;
-    std::vector<Entry> near_;
-    // The last two (proxy, crossed) that queued each face: skips re-queuing a face for
-    // the same proxy from another neighbour (the error would be the same) unless the new
-    // path crossed no crease and the old one did.
-    std::vector<int> queued_;
-    std::vector<char> crossed_;  // per labelled face: reached across a crease
+    std::vector<std::uint64_t> heap_;
+    std::vector<std::uint64_t> near_;
 };
 
 }  // namespace vqsa
