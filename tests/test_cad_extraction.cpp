@@ -243,9 +243,12 @@ TEST(CadExtraction, CorpusWithTheAutomaticCount) {
 
 TEST(CadExtraction, ShapesBeyondTheCorpusAreTheirFacesAutomatically) {
     // A thin tube, a pencil (a cone sharpened from its cylinder, one chart), a roof bending
-    // 20° at its ridge (one chart), a hole drilled 35° off a plate's normal: clean, noisy
-    // and irregular, the automatic count is the face count and each region one face.
-    for (const CorpusCase& c : cad_corpus({"tube", "pencil", "roof_block", "oblique_hole"})) {
+    // 20° at its ridge (one chart), a hole drilled 35° off a plate's normal, a shaft with a
+    // flat meeting its cylinder at 43°, an octagonal prism (sides bending 45°) with a bore, a
+    // cylinder under a dome meeting it at 34°: clean, noisy and irregular, the automatic count
+    // is the face count and each region one face.
+    for (const CorpusCase& c : cad_corpus({"tube", "pencil", "roof_block", "oblique_hole", "d_shaft", "octagon_bore",
+                                           "domed_cylinder"})) {
         SCOPED_TRACE(c.part + " " + c.variant);
         const Part part = make_part(c.part, c.options);
         const Outcome o = run(part, counted(0, c.options.seed));
@@ -253,6 +256,30 @@ TEST(CadExtraction, ShapesBeyondTheCorpusAreTheirFacesAutomatically) {
         EXPECT_GE(o.accuracy, 0.999);
         EXPECT_EQ(o.two_part, 0);
     }
+}
+
+TEST(CadExtraction, PlanesBendingBelowTheCreaseAngleUnderNoiseAreRegionsOfTheirOwn) {
+    // An octagonal prism's sides bend by 45°, below the crease angle: under noise one quadric
+    // (a hyperboloid, an elliptic cone) held two sides within their noise, and the run stopped
+    // explained with 7 to 10 regions, at its count of 11 too (accuracy 0.79 to 0.95, mean
+    // 0.85 over these draws). Their normals bunch in two groups with a gap between, as no
+    // curved surface's do: two planes. Eight noise draws and poses, at the count and
+    // automatically.
+    double sum = 0;
+    int runs = 0;
+    for (std::uint64_t draw = 0; draw < 8; ++draw) {
+        PartOptions options;
+        options.noise = 0.002, options.random_pose = true, options.seed = 101 + draw;
+        const Part part = make_part("octagon_bore", options);
+        for (int proxies : {11, 0}) {
+            SCOPED_TRACE("draw " + std::to_string(draw) + ", " + std::to_string(proxies) + " proxies");
+            const Outcome o = run(part, counted(proxies));
+            EXPECT_GE(o.accuracy, 0.94);
+            EXPECT_EQ(o.two_part, 0);
+            sum += o.accuracy, ++runs;
+        }
+    }
+    EXPECT_GE(sum / runs, 0.99);
 }
 
 TEST(CadExtraction, ACoarseTubesEndsAreChartsOfTheirOwn) {

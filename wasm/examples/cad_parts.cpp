@@ -282,6 +282,17 @@ void append_open(std::vector<Vec3>& loop, const std::vector<Vec3>& piece) {
     loop.insert(loop.end(), piece.begin(), piece.end() - 1);
 }
 
+// A prism on the loop `outline` (z = 0) up to `height`, bored through along the loop `ring`
+// (point for point with the outline): its side (labelled per outline segment), the top
+// annulus, the bore and the bottom annulus.
+void bored_prism(PartBuilder& b, const std::vector<Vec3>& outline, const std::vector<Vec3>& ring, double height,
+                 const Labeller& side, int top, int bore, int bottom, int side_rows, int annulus_rows, int bore_rows) {
+    b.band(outline, at_height(outline, height), side_rows, true, side);
+    b.band(at_height(outline, height), at_height(ring, height), annulus_rows, true, top);
+    b.band(at_height(ring, height), ring, bore_rows, true, bore);
+    b.band(ring, outline, annulus_rows, true, bottom);
+}
+
 // Where the ray from a slot's centre along unit u meets the slot: two half-circle ends of
 // radius r centred at ±a along x, joined by flat sides at ±r along y (a = 0: a circle).
 // `piece`: 0 the flat side below, 1 above, 2 the end to the right, 3 to the left.
@@ -940,11 +951,8 @@ Part tube(const PartOptions& o) {
     std::vector<Vec3> outer_ring;
     for (double t : b.spacing(b.count(64))) outer_ring.emplace_back(R * portable::cos(2 * kPi * t), R * portable::sin(2 * kPi * t), 0);
     outer_ring.pop_back();  // a closed loop: 2π is 0
-    const auto inner_ring = onto_circle(outer_ring, Vec3::Zero(), r);
-    b.band(outer_ring, at_height(outer_ring, L), b.count(16), true, outer);
-    b.band(at_height(outer_ring, L), at_height(inner_ring, L), b.count(1), true, top);
-    b.band(at_height(inner_ring, L), inner_ring, b.count(16), true, bore);
-    b.band(inner_ring, outer_ring, b.count(1), true, bottom);
+    bored_prism(b, outer_ring, onto_circle(outer_ring, Vec3::Zero(), r), L, [&](int) { return outer; }, top, bore, bottom,
+                b.count(16), b.count(1), b.count(16));
     return b.finish("tube");
 }
 
@@ -1053,6 +1061,82 @@ Part oblique_hole(const PartOptions& o) {
     return b.finish("oblique_hole");
 }
 
+
+// A shaft with a flat: a cylinder cut by a plane along its axis, 0.08 of its 0.3 radius
+// deep; the flat meets the cylinder at 43° (below the crease angle). Two D-shaped ends; 4 faces.
+Part d_shaft(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R = 0.3, L = 1.5, y = 0.22;
+    const double theta = std::asin(y / R);  // the flat's edges at angles theta and pi - theta
+    const int side = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
+    const int flat = b.surface(plane({0, y, 0}, Vec3::UnitY()));
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, L}, Vec3::UnitZ()));
+    std::vector<Vec3> loop;
+    std::vector<int> label;
+    const int arc = b.count(40);
+    for (double t : b.spacing(arc)) {
+        const double a = kPi - theta + t * (kPi + 2 * theta);  // the long way round
+        loop.emplace_back(R * portable::cos(a), R * portable::sin(a), 0);
+    }
+    loop.pop_back();
+    label.assign(loop.size(), side);
+    const auto chord = b.segment(Vec3(R * std::cos(theta), y, 0), Vec3(-R * std::cos(theta), y, 0), b.count(8));
+    append_open(loop, chord);
+    label.insert(label.end(), chord.size() - 1, flat);
+    b.fill(loop, Vec3::Zero(), b.count(5), bottom);
+    b.band(loop, at_height(loop, L), b.count(16), true, [&](int j) { return label[j]; });
+    b.fill(at_height(loop, L), Vec3(0, 0, L), b.count(5), top);
+    return b.finish("d_shaft");
+}
+
+// An octagonal prism with a through bore: neighbouring sides bend by 45°, below the crease
+// angle, so the eight sides are one chart about as round as a cylinder; 11 faces.
+Part octagon_bore(const PartOptions& o) {
+    PartBuilder b(o);
+    const double circumradius = 0.6, T = 0.5, bore_r = 0.25;
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, T}, Vec3::UnitZ()));
+    const int bore = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), bore_r));
+    std::vector<Vec3> corners, outline;
+    std::vector<int> segment_side;
+    for (int k = 0; k < 8; ++k) {
+        const double a = kPi / 4 * k;
+        corners.emplace_back(circumradius * portable::cos(a), circumradius * portable::sin(a), 0);
+    }
+    for (int k = 0; k < 8; ++k) {
+        const int side = b.surface(plane(corners[k], (corners[k] + corners[(k + 1) % 8]).normalized()));
+        const auto edge = b.segment(corners[k], corners[(k + 1) % 8], b.count(6));
+        append_open(outline, edge);
+        segment_side.insert(segment_side.end(), edge.size() - 1, side);
+    }
+    bored_prism(b, outline, onto_circle(outline, Vec3::Zero(), bore_r), T, [&](int j) { return segment_side[j]; }, top,
+                bore, bottom, b.count(5), b.count(4), b.count(6));
+    return b.finish("octagon_bore");
+}
+
+// A cylinder under a shallow spherical dome (radius 0.6 on a 0.5 cylinder: they meet at 34°,
+// below the crease angle); 3 faces.
+Part domed_cylinder(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R = 0.5, L = 0.8, Rs = 0.6, h = std::sqrt(Rs * Rs - R * R);  // sphere centre h below the rim
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int side = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
+    const int dome = b.surface({QuadricType::sphere, Vec3(0, 0, L - h), Vec3::UnitZ(), Rs});
+    std::vector<Vec3> ring;
+    for (double t : b.spacing(b.count(48))) ring.emplace_back(R * portable::cos(2 * kPi * t), R * portable::sin(2 * kPi * t), 0);
+    ring.pop_back();
+    b.fill(ring, Vec3::Zero(), b.count(5), bottom);
+    b.band(ring, at_height(ring, L), b.count(12), true, side);
+    const double rim = std::asin(R / Rs);  // polar angle of the rim from the dome's top
+    const int rows = b.count(8);
+    b.cap(at_height(ring, L), rows, [&](int i) {
+        const double polar = rim * (1 - double(i) / rows), r = Rs * std::sin(polar);
+        std::vector<Vec3> next;
+        for (const Vec3& p : ring) next.emplace_back(p.x() * r / R, p.y() * r / R, L - h + Rs * std::cos(polar));
+        return next;
+    }, Vec3(0, 0, L - h + Rs), dome);
+    return b.finish("domed_cylinder");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -1069,6 +1153,9 @@ std::vector<std::string> part_names() {
     names.push_back("pencil");
     names.push_back("roof_block");
     names.push_back("oblique_hole");
+    names.push_back("d_shaft");
+    names.push_back("octagon_bore");
+    names.push_back("domed_cylinder");
     return names;
 }
 
@@ -1092,6 +1179,9 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "pencil") return pencil(options);
     if (name == "roof_block") return roof_block(options);
     if (name == "oblique_hole") return oblique_hole(options);
+    if (name == "d_shaft") return d_shaft(options);
+    if (name == "octagon_bore") return octagon_bore(options);
+    if (name == "domed_cylinder") return domed_cylinder(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 

@@ -46,8 +46,10 @@ struct PartOptions {
 
 // box_boss_hole, l_bracket, stepped_shaft, flange, thin_plate, slotted_block (the corpus
 // the CAD-extraction tests hold to their accuracy), then shapes beyond it, measured but
-// not held to the corpus's bar: rounded_block (no crease anywhere) and plate_assembly
-// (three thin plates, 39 faces on three components).
+// not held to the corpus's bar: rounded_block (no crease anywhere), plate_assembly (three
+// thin plates, 39 faces on three components), hex_nut, chamfered_box, tube, pencil,
+// roof_block, oblique_hole, d_shaft (a flat along a cylinder), octagon_bore (sides bending
+// 45°) and domed_cylinder (a sphere meeting a cylinder at 34°).
 std::vector<std::string> part_names();
 std::vector<std::string> corpus_part_names();
 // Throws std::invalid_argument for an unknown name.

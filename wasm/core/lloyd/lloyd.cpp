@@ -275,6 +275,8 @@ Classification Lloyd::classify_proxy(int proxy) const {
 }
 
 void Lloyd::stop(StopReason reason) {
+    // Fixed now: a split at the stop must not turn plane pairs off for the merges after it.
+    if (options_.proxies > 0 && static_cast<int>(proxies_.size()) < options_.proxies) below_target_ = true;
     if (reason != StopReason::cancelled) {
         release_minor_parts();
         ensure_valid();
@@ -405,6 +407,10 @@ void Lloyd::decide() {
         bool all_noise = true;
         for (int i = 0; i < count && all_noise; ++i) all_noise = proxies_[i].error <= noise_energy(i) && region_noise_[i] > 0;
         if (all_noise || fitted_below_target()) {
+            // The count no longer binds: as growing on the automatic count, a region explained
+            // by the noise may still be two planes its quadric bends between.
+            below_target_ = true;
+            if (split(true)) return start_operation(Operation::split);
             finishing_ = true, finish_reason_ = StopReason::fitted;
             return finish();
         }
@@ -993,8 +999,46 @@ Lloyd::Parts Lloyd::plane_pair(const std::vector<int>& faces, double error) cons
         c[0] = sum[0].normalized(), c[1] = sum[1].normalized();
         if (!moved && round > 0) break;
     }
+    // The groups lie a crease apart, or their normals leave a gap between them: each group
+    // within its own spread, the two apart by more than six spreads (three each side). A
+    // curved surface's normals fill the range between its groups (an arc split in two:
+    // 2√3 spreads apart; rounded fillets and cones in the corpus up to 4.8); two planes'
+    // stay in two bunches whatever their bend (the 45° of an octagonal prism's sides under
+    // noise: 17 to 29). A spread is measured on min_quadric_faces faces or more: a handful
+    // of a scan's faces bunch by chance (rocker_arm's last regions: groups of 2 to 5 faces
+    // 34° to 40° apart, 7 to 18 spreads).
     const double cos_crease = std::cos(options_.features.crease_angle * M_PI / 180);
-    if (c[0].dot(c[1]) > cos_crease) return out;
+    if (c[0].dot(c[1]) > cos_crease) {
+        double spread[2] = {0, 0}, area[2] = {0, 0};
+        int count[2] = {0, 0};
+        for (std::size_t k = 0; k < faces.size(); ++k) {
+            const int s = side[k];
+            const double angle = std::acos(std::clamp(normal[faces[k]].dot(c[s]), -1.0, 1.0));
+            spread[s] += model_.areas[faces[k]] * angle * angle, area[s] += model_.areas[faces[k]], ++count[s];
+        }
+        const double apart = std::acos(std::clamp(c[0].dot(c[1]), -1.0, 1.0));
+        if (std::min(count[0], count[1]) < options_.min_quadric_faces ||
+            !(apart > 6 * std::sqrt(std::max(spread[0] / area[0], spread[1] / area[1]))))
+            return out;
+        // And neither group a strip one facet wide (is_strip): the facet rows of a coarse
+        // fillet bunch by normal as well, while their vertices lie on the fillet.
+        std::vector<std::pair<int, int>> member(faces.size());
+        for (std::size_t k = 0; k < faces.size(); ++k) member[k] = {faces[k], side[k]};
+        std::sort(member.begin(), member.end());
+        auto group_of = [&](int f) {
+            const auto it = std::lower_bound(member.begin(), member.end(), std::make_pair(f, -1));
+            return it != member.end() && it->first == f ? it->second : -1;
+        };
+        bool wide[2] = {false, false};
+        for (const auto& [f, s] : member) {
+            if (wide[s]) continue;
+            bool inside = true;
+            for (int e = model_.graph.begin(f); e < model_.graph.end(f) && inside; ++e)
+                inside = group_of(model_.graph.neighbor[e]) == s;
+            wide[s] = inside;
+        }
+        if (!wide[0] || !wide[1]) return out;
+    }
     // A plane through each group. Each face is held by the nearer plane: a sliver along the
     // crease may face either way. But the parts are the groups: near where the planes meet
     // either is near, and by distance the noise would cut a wedge out of a face.

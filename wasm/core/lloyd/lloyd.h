@@ -254,12 +254,16 @@ private:
     bool merge_least_cost(const std::function<bool(int, int)>& eligible,
                           const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable);
     bool invalid(int proxy, Parts* parts = nullptr) const;
-    // Whether regions on a plane_pair are split: with the automatic count, which promises one
-    // region per surface, on a mesh that is not an exact export. On an exact one the creases
+    // Whether regions on a plane_pair are split (and refused as unions): with the automatic
+    // count, which promises one region per surface, and below a target count, where a split
+    // costs no merge (from the moment a run settles explained or stops below it, for the
+    // rest of the run), on a mesh that is not an exact export. On an exact one the creases
     // are found, a quadric through two planes is fitted as the pair it is, and the facets of
     // a coarse tessellation lie on two planes about as closely as on their quadric (the
     // rounded ends of a coarse slot: split, 0.978 → 0.969).
-    bool plane_pairs_split() const { return automatic() && !exact_; }
+    bool plane_pairs_split() const {
+        return (automatic() || below_target_ || static_cast<int>(proxies_.size()) < options_.proxies) && !exact_;
+    }
     // Whether a region (`faces`: of each region) lies on a plane_pair (plane_pairs_split only).
     bool on_plane_pair(int proxy, const RegionFaces& faces, Parts* parts) const;
     // At the stop: the faces on a region's second part, too small to split off, to
@@ -437,6 +441,7 @@ private:
     bool wide_pending_ = false;      // the pending teleport is a wide one
     double wide_unexplained_ = 0;    // unexplained() before it
     bool finishing_ = false;              // automatic count: no more insertions, merges only
+    bool below_target_ = false;  // a target count the run settled (explained) or stopped below
     double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
     int unpaid_ = 0;  // insertions in a row that did not pay
