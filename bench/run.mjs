@@ -323,7 +323,22 @@ if (profile) {
   'after each of them only the regions it changed and their neighbours (one ring; two) cut bunny/28\'s Lloyd stage 1.28',
   '→ 1.05 s (0.85 s) but left the partitions in worse minima: fandisk/22 RMS +292 % (+44 %), mask/6 +101 % (+26 %),',
   'homer/61 +21 % (+32 %), chess_pawn/12 +295 % (+295 %), rocker_arm/20 +20 % (+11 %), csg/10 −13 % (−13 %): fewer',
-  'teleports paid, judged by an energy that could only fall locally (measured 2026-11-25).', '');
+  'teleports paid, judged by an energy that could only fall locally (measured 2026-11-25).', '',
+  'Per iteration vqsa is now the faster: on homer/61 the peer\'s 0.137 s cover about 50 iterations (five after each',
+  'doubling of the count, then 20), 2.7 ms each; vqsa\'s iterations take 1.7 ms, 2.1 ms with the operations between',
+  'them, but the stage makes 120. Since 2026-11-28 a face is queued only under a key below every key it had, so the',
+  'heap holds 8-byte keys and each face one record (bunny/28 −16 %, fandisk/22 −9 %, homer/61 −8 %, labels identical).',
+  'Faces in the order of the file also cost: bunny_closed.off\'s neighbours lie 1 % of the time within 64 faces of each',
+  'other in memory (fandisk.off 79 %), and the same bunny with its faces in breadth-first order takes 19 % less per',
+  'iteration; the labels would change (ties go by face index), so the model keeps the file\'s order.',
+  'Nor do other stage lengths pay, judged over eight seeds (the RMS of one seed is one draw: the Lloyd stage\'s RMS over',
+  'seeds 1–8 spans 3.0–4.8e-4 on fandisk/22, 0.98–3.6e-3 on chess_pawn/12, 3.4–5.5e-3 on mask/6, 1.02–1.23e-3 on',
+  'homer/61; seed 1, the one the table shows, is the best of the eight on fandisk and chess_pawn and near the worst on',
+  'homer). Medians over the eight seeds:',
+  'insertion batches of half the count, or doubling as the peer does, saved 3–20 % of the stage on five meshes but',
+  'raised mask/6\'s RMS 14–25 % and csg/10\'s 20 % (doubling); one or two iterations after a split or a teleport before',
+  'the merge that follows it saved 3–22 % and raised fandisk/22\'s RMS 20 % and chess_pawn/12\'s 84 % (measured',
+  '2026-11-28).', '');
 }
 lines.push(
   '## 2. Error against proxy count', '',
