@@ -84,6 +84,15 @@ public:
         return t;
     }
 
+    // A closed loop of `n` segments round the circle of radius r about the z axis, at z = 0,
+    // spaced as `spacing` (its last parameter, 2π, is the first point again).
+    std::vector<Vec3> circle(double r, int n) {
+        std::vector<Vec3> out;
+        for (double t : spacing(n)) out.emplace_back(r * portable::cos(2 * kPi * t), r * portable::sin(2 * kPi * t), 0);
+        out.pop_back();
+        return out;
+    }
+
     // Points a → b (both included), `n` segments.
     std::vector<Vec3> segment(const Vec3& a, const Vec3& b, int n) {
         std::vector<Vec3> out;
@@ -948,9 +957,7 @@ Part tube(const PartOptions& o) {
     const int outer = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
     const int bore = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), r));
     const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, L}, Vec3::UnitZ()));
-    std::vector<Vec3> outer_ring;
-    for (double t : b.spacing(b.count(64))) outer_ring.emplace_back(R * portable::cos(2 * kPi * t), R * portable::sin(2 * kPi * t), 0);
-    outer_ring.pop_back();  // a closed loop: 2π is 0
+    const std::vector<Vec3> outer_ring = b.circle(R, b.count(64));
     bored_prism(b, outer_ring, onto_circle(outer_ring, Vec3::Zero(), r), L, [&](int) { return outer; }, top, bore, bottom,
                 b.count(16), b.count(1), b.count(16));
     return b.finish("tube");
@@ -963,9 +970,7 @@ Part pencil(const PartOptions& o) {
     const int end = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
     const int side = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
     const int cone = b.surface({QuadricType::cone, Vec3(0, 0, L + tip), -Vec3::UnitZ(), 0, std::atan(R / tip)});
-    std::vector<Vec3> ring;
-    for (double t : b.spacing(b.count(48))) ring.emplace_back(R * portable::cos(2 * kPi * t), R * portable::sin(2 * kPi * t), 0);
-    ring.pop_back();
+    const std::vector<Vec3> ring = b.circle(R, b.count(48));
     b.fill(ring, Vec3::Zero(), b.count(5), end);
     b.band(ring, at_height(ring, L), b.count(16), true, side);
     // Rings towards the apex, shrinking linearly along the cone's generators.
@@ -1061,7 +1066,6 @@ Part oblique_hole(const PartOptions& o) {
     return b.finish("oblique_hole");
 }
 
-
 // A shaft with a flat: a cylinder cut by a plane along its axis, 0.08 of its 0.3 radius
 // deep; the flat meets the cylinder at 43° (below the crease angle). Two D-shaped ends; 4 faces.
 Part d_shaft(const PartOptions& o) {
@@ -1121,9 +1125,7 @@ Part domed_cylinder(const PartOptions& o) {
     const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
     const int side = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
     const int dome = b.surface({QuadricType::sphere, Vec3(0, 0, L - h), Vec3::UnitZ(), Rs});
-    std::vector<Vec3> ring;
-    for (double t : b.spacing(b.count(48))) ring.emplace_back(R * portable::cos(2 * kPi * t), R * portable::sin(2 * kPi * t), 0);
-    ring.pop_back();
+    const std::vector<Vec3> ring = b.circle(R, b.count(48));
     b.fill(ring, Vec3::Zero(), b.count(5), bottom);
     b.band(ring, at_height(ring, L), b.count(12), true, side);
     const double rim = std::asin(R / Rs);  // polar angle of the rim from the dome's top

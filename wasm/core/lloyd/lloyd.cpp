@@ -1010,34 +1010,26 @@ Lloyd::Parts Lloyd::plane_pair(const std::vector<int>& faces, double error) cons
     const double cos_crease = std::cos(options_.features.crease_angle * M_PI / 180);
     if (c[0].dot(c[1]) > cos_crease) {
         double spread[2] = {0, 0}, area[2] = {0, 0};
-        int count[2] = {0, 0};
+        std::vector<int> group_faces[2];
         for (std::size_t k = 0; k < faces.size(); ++k) {
             const int s = side[k];
             const double angle = std::acos(std::clamp(normal[faces[k]].dot(c[s]), -1.0, 1.0));
-            spread[s] += model_.areas[faces[k]] * angle * angle, area[s] += model_.areas[faces[k]], ++count[s];
+            spread[s] += model_.areas[faces[k]] * angle * angle, area[s] += model_.areas[faces[k]];
+            group_faces[s].push_back(faces[k]);
         }
         const double apart = std::acos(std::clamp(c[0].dot(c[1]), -1.0, 1.0));
-        if (std::min(count[0], count[1]) < options_.min_quadric_faces ||
-            !(apart > 6 * std::sqrt(std::max(spread[0] / area[0], spread[1] / area[1]))))
-            return out;
-        // And neither group a strip one facet wide (is_strip): the facet rows of a coarse
-        // fillet bunch by normal as well, while their vertices lie on the fillet.
+        if (!(apart > 6 * std::sqrt(std::max(spread[0] / area[0], spread[1] / area[1])))) return out;
+        // Nor is either group a strip (is_strip): the facet rows of a coarse fillet bunch by
+        // normal as well, while their vertices lie on the fillet.
         std::vector<std::pair<int, int>> member(faces.size());
         for (std::size_t k = 0; k < faces.size(); ++k) member[k] = {faces[k], side[k]};
         std::sort(member.begin(), member.end());
-        auto group_of = [&](int f) {
+        const auto group_of = [&](int f) {
             const auto it = std::lower_bound(member.begin(), member.end(), std::make_pair(f, -1));
             return it != member.end() && it->first == f ? it->second : -1;
         };
-        bool wide[2] = {false, false};
-        for (const auto& [f, s] : member) {
-            if (wide[s]) continue;
-            bool inside = true;
-            for (int e = model_.graph.begin(f); e < model_.graph.end(f) && inside; ++e)
-                inside = group_of(model_.graph.neighbor[e]) == s;
-            wide[s] = inside;
-        }
-        if (!wide[0] || !wide[1]) return out;
+        const int m = options_.min_quadric_faces;
+        if (is_strip(model_, group_faces[0], m, group_of) || is_strip(model_, group_faces[1], m, group_of)) return out;
     }
     // A plane through each group. Each face is held by the nearer plane: a sliver along the
     // crease may face either way. But the parts are the groups: near where the planes meet
@@ -1839,17 +1831,6 @@ std::vector<int> faces_of(const std::vector<int>& labels, int region) {
     for (int f = 0; f < static_cast<int>(labels.size()); ++f)
         if (labels[f] == region) out.push_back(f);
     return out;
-}
-
-bool is_strip(const Model& model, const std::vector<int>& labels, const std::vector<int>& faces, int min_faces) {
-    if (static_cast<int>(faces.size()) < min_faces) return true;
-    for (int f : faces) {
-        bool inside = true;
-        for (int e = model.graph.begin(f); e < model.graph.end(f) && inside; ++e)
-            inside = labels[model.graph.neighbor[e]] == labels[f];
-        if (inside) return false;
-    }
-    return true;
 }
 
 Quadric plane_through(const Model& model, int face) {

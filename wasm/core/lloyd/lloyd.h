@@ -132,7 +132,21 @@ std::vector<int> faces_of(const std::vector<int>& labels, int region);
 // of its own: fewer than `min_faces` faces, or one facet wide (no face with all its
 // neighbours in it; a column of a ruled band is exactly planar, a ring of a sphere's
 // tessellation exactly a cone, so its own fit says nothing of the surface it lies on).
-bool is_strip(const Model& model, const std::vector<int>& labels, const std::vector<int>& faces, int min_faces);
+// The same for any set of faces: `group_of(f)` names the set face f is in.
+template <class GroupOf>
+bool is_strip(const Model& model, const std::vector<int>& faces, int min_faces, const GroupOf& group_of) {
+    if (static_cast<int>(faces.size()) < min_faces) return true;
+    for (int f : faces) {
+        bool inside = true;
+        for (int e = model.graph.begin(f); e < model.graph.end(f) && inside; ++e)
+            inside = group_of(model.graph.neighbor[e]) == group_of(f);
+        if (inside) return false;
+    }
+    return true;
+}
+inline bool is_strip(const Model& model, const std::vector<int>& labels, const std::vector<int>& faces, int min_faces) {
+    return is_strip(model, faces, min_faces, [&](int f) { return labels[f]; });
+}
 
 // The plane of a face (a new proxy's quadric before its first fit).
 Quadric plane_through(const Model& model, int face);
