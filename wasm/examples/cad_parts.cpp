@@ -1139,6 +1139,70 @@ Part domed_cylinder(const PartOptions& o) {
     return b.finish("domed_cylinder");
 }
 
+// A round bar cut at 50° to its axis: the cut meets the side at 140° on one side and at 40°,
+// below the crease angle, on the other, so the crease between them runs out half way
+// round and the two faces are one chart; 3 faces.
+Part angled_cut(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R = 0.4, L = 1.0, slope = std::tan(50 * kPi / 180);
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int side = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
+    const int cut = b.surface(plane({0, 0, L}, Vec3(-slope, 0, 1)));
+    const std::vector<Vec3> ring = b.circle(R, b.count(48));
+    std::vector<Vec3> rim;
+    for (const Vec3& p : ring) rim.emplace_back(p.x(), p.y(), L + slope * p.x());
+    b.fill(ring, Vec3::Zero(), b.count(5), bottom);
+    b.band(ring, rim, b.count(14), true, side);
+    b.fill(rim, Vec3(0, 0, L), b.count(6), cut);
+    return b.finish("angled_cut");
+}
+
+// A hemispherical bowl whose wall is 4 % of its radius thick: two concentric spheres facing
+// opposite ways and the flat rim between them, one facet wide; 3 faces.
+Part bowl(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R = 1.0, r = 0.96;
+    const int outer = b.surface({QuadricType::sphere, Vec3::Zero(), Vec3::UnitZ(), R});
+    const int inner = b.surface({QuadricType::sphere, Vec3::Zero(), Vec3::UnitZ(), r});
+    const int rim = b.surface(plane(Vec3::Zero(), Vec3::UnitZ()));
+    const std::vector<Vec3> ring = b.circle(1.0, b.count(64));
+    auto hemisphere = [&](double radius, int label) {
+        const int rows = b.count(16);
+        const std::vector<Vec3> start = onto_circle(ring, Vec3::Zero(), radius);
+        b.cap(start, rows, [&](int i) {
+            const double polar = 0.5 * kPi * i / rows;  // from the rim down
+            std::vector<Vec3> next;
+            for (const Vec3& p : ring) next.emplace_back(p.x() * radius * std::cos(polar), p.y() * radius * std::cos(polar), -radius * std::sin(polar));
+            return next;
+        }, Vec3(0, 0, -radius), label);
+    };
+    hemisphere(R, outer);
+    hemisphere(r, inner);
+    b.band(onto_circle(ring, Vec3::Zero(), R), onto_circle(ring, Vec3::Zero(), r), 1, true, rim);
+    return b.finish("bowl");
+}
+
+// A disc whose top is a paraboloid of revolution (z = h − ρ²/4f) meeting its cylindrical
+// side at 51°: a quadric that is none of the elementary types, between two that are; 3 faces.
+Part dish(const PartOptions& o) {
+    PartBuilder b(o);
+    const double R = 0.8, H = 0.25, f = 0.5, top = H + R * R / (4 * f);
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int side = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), R));
+    const int dome = b.surface({QuadricType::elliptic_paraboloid, Vec3(0, 0, top), Vec3::UnitZ(), 2 * f});
+    const std::vector<Vec3> ring = b.circle(R, b.count(48));
+    b.fill(ring, Vec3::Zero(), b.count(5), bottom);
+    b.band(ring, at_height(ring, H), b.count(4), true, side);
+    const int rows = b.count(10);
+    b.cap(at_height(ring, H), rows, [&](int i) {
+        const double rho = R * (1 - double(i) / rows);
+        std::vector<Vec3> next;
+        for (const Vec3& p : ring) next.emplace_back(p.x() * rho / R, p.y() * rho / R, top - rho * rho / (4 * f));
+        return next;
+    }, Vec3(0, 0, top), dome);
+    return b.finish("dish");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -1158,6 +1222,9 @@ std::vector<std::string> part_names() {
     names.push_back("d_shaft");
     names.push_back("octagon_bore");
     names.push_back("domed_cylinder");
+    names.push_back("angled_cut");
+    names.push_back("bowl");
+    names.push_back("dish");
     return names;
 }
 
@@ -1184,6 +1251,9 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "d_shaft") return d_shaft(options);
     if (name == "octagon_bore") return octagon_bore(options);
     if (name == "domed_cylinder") return domed_cylinder(options);
+    if (name == "angled_cut") return angled_cut(options);
+    if (name == "bowl") return bowl(options);
+    if (name == "dish") return dish(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 
