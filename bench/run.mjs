@@ -338,7 +338,10 @@ if (profile) {
   'insertion batches of half the count, or doubling as the peer does, saved 3–20 % of the stage on five meshes but',
   'raised mask/6\'s RMS 14–25 % and csg/10\'s 20 % (doubling); one or two iterations after a split or a teleport before',
   'the merge that follows it saved 3–22 % and raised fandisk/22\'s RMS 20 % and chess_pawn/12\'s 84 % (measured',
-  '2026-11-28).', '');
+  '2026-11-28). A teleport as the peer makes it, the cheapest merge made with the insertion and one Lloyd stage',
+  'after both instead of one after each, saved 11–34 % of the stage on six meshes but raised fandisk/22\'s RMS 99 %,',
+  'chess_pawn/12\'s 84 % and mask/6\'s 41 % (bunny/28 10 %, homer/61 8 %): fewer teleports paid, and the first that',
+  'does not ends them (measured 2026-11-28, later).', '');
 }
 lines.push(
   '## 2. Error against proxy count', '',
