@@ -291,6 +291,29 @@ void append_open(std::vector<Vec3>& loop, const std::vector<Vec3>& piece) {
     loop.insert(loop.end(), piece.begin(), piece.end() - 1);
 }
 
+// A regular polygon round the z axis at z = 0 (first corner on +x), each side a plane face
+// of its own cut into `segments` segments: the closed outline, and per segment its side.
+struct PolygonOutline {
+    std::vector<Vec3> points;
+    std::vector<int> side;
+};
+PolygonOutline regular_polygon(PartBuilder& b, int sides, double circumradius, int segments) {
+    std::vector<Vec3> corners;
+    for (int k = 0; k < sides; ++k) {
+        const double a = 2 * kPi / sides * k;
+        corners.emplace_back(circumradius * portable::cos(a), circumradius * portable::sin(a), 0);
+    }
+    PolygonOutline out;
+    for (int k = 0; k < sides; ++k) {
+        const Vec3& next = corners[(k + 1) % sides];
+        const int side = b.surface(plane(corners[k], (corners[k] + next).normalized()));
+        const std::vector<Vec3> edge = b.segment(corners[k], next, segments);
+        append_open(out.points, edge);
+        out.side.insert(out.side.end(), edge.size() - 1, side);
+    }
+    return out;
+}
+
 // A prism on the loop `outline` (z = 0) up to `height`, bored through along the loop `ring`
 // (point for point with the outline): its side (labelled per outline segment), the top
 // annulus, the bore and the bottom annulus.
@@ -853,26 +876,14 @@ Part hex_nut(const PartOptions& o) {
     const double half_angle = std::atan(1.0);
     const int sink_top = b.surface({QuadricType::cone, Vec3(0, 0, T - sink_r), Vec3::UnitZ(), 0, half_angle});
     const int sink_bottom = b.surface({QuadricType::cone, Vec3(0, 0, sink_r), -Vec3::UnitZ(), 0, half_angle});
-    std::vector<int> side;
-    std::vector<Vec3> hexagon, corners;
-    std::vector<int> segment_side;
-    for (int k = 0; k < 6; ++k) {
-        const double a = kPi / 3 * k;
-        corners.emplace_back(circumradius * portable::cos(a), circumradius * portable::sin(a), 0);
-    }
-    for (int k = 0; k < 6; ++k) {
-        const Vec3 normal = (corners[k] + corners[(k + 1) % 6]).normalized();
-        side.push_back(b.surface(plane(corners[k], normal)));
-        const std::vector<Vec3> edge = b.segment(corners[k], corners[(k + 1) % 6], b.count(8));
-        append_open(hexagon, edge);
-        segment_side.insert(segment_side.end(), edge.size() - 1, side.back());
-    }
-    const Vec3 axis_bottom = Vec3::Zero(), axis_top(0, 0, T);
+    const PolygonOutline outline = regular_polygon(b, 6, circumradius, b.count(8));
+    const std::vector<Vec3>& hexagon = outline.points;
+    const Vec3 axis_bottom = Vec3::Zero();
     const auto sink_bottom_outer = onto_circle(hexagon, axis_bottom, sink_r);
     const auto sink_top_outer = at_height(sink_bottom_outer, T);
     const auto bore_bottom = at_height(onto_circle(hexagon, axis_bottom, bore_r), depth);
     const auto bore_top = at_height(bore_bottom, T - depth);
-    b.band(hexagon, at_height(hexagon, T), b.count(5), true, [&](int j) { return segment_side[j]; });
+    b.band(hexagon, at_height(hexagon, T), b.count(5), true, [&](int j) { return outline.side[j]; });
     b.band(at_height(hexagon, T), sink_top_outer, b.count(4), true, top);
     b.band(sink_top_outer, bore_top, b.count(2), true, sink_top);
     b.band(bore_top, bore_bottom, b.count(6), true, bore);
@@ -1100,20 +1111,9 @@ Part octagon_bore(const PartOptions& o) {
     const double circumradius = 0.6, T = 0.5, bore_r = 0.25;
     const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, T}, Vec3::UnitZ()));
     const int bore = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), bore_r));
-    std::vector<Vec3> corners, outline;
-    std::vector<int> segment_side;
-    for (int k = 0; k < 8; ++k) {
-        const double a = kPi / 4 * k;
-        corners.emplace_back(circumradius * portable::cos(a), circumradius * portable::sin(a), 0);
-    }
-    for (int k = 0; k < 8; ++k) {
-        const int side = b.surface(plane(corners[k], (corners[k] + corners[(k + 1) % 8]).normalized()));
-        const auto edge = b.segment(corners[k], corners[(k + 1) % 8], b.count(6));
-        append_open(outline, edge);
-        segment_side.insert(segment_side.end(), edge.size() - 1, side);
-    }
-    bored_prism(b, outline, onto_circle(outline, Vec3::Zero(), bore_r), T, [&](int j) { return segment_side[j]; }, top,
-                bore, bottom, b.count(5), b.count(4), b.count(6));
+    const PolygonOutline outline = regular_polygon(b, 8, circumradius, b.count(6));
+    bored_prism(b, outline.points, onto_circle(outline.points, Vec3::Zero(), bore_r), T,
+                [&](int j) { return outline.side[j]; }, top, bore, bottom, b.count(5), b.count(4), b.count(6));
     return b.finish("octagon_bore");
 }
 
