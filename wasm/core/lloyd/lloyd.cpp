@@ -1628,6 +1628,13 @@ bool Lloyd::merge_handful() {
     // coarse cylinder whose vertices are on it. Merged at least cost instead, a 12-triangle
     // box became one cylinder, and a chamfered box of 44 triangles (its chamfers bend by
     // 45°, less than the crease angle; each corner one triangle) one sphere.
+    // Two faces or more in one plane as closely as a file stores them are exact data
+    // whatever the roughness beside them says (a coarse tessellation's sag counts as
+    // roughness, and a flat face beside a bend gets the bend's): they join a neighbour only
+    // if the union stays within the noise of the two, as a facet of a coarse cylinder does
+    // with the facets beside it, or as a piece of the other's surface (vertices_on). A face of two long triangles rolled at its edge into a
+    // half cylinder (an ABC sheet-metal hinge) bent the roll's quadric 20 times beyond that
+    // noise, and the union was typed a cylinder of three times the roll's radius.
     const RegionFaces faces = faces_by_region();
     auto handful = [&](int r, int into) {
         const Proxy& p = proxies_[r];
@@ -1635,9 +1642,19 @@ bool Lloyd::merge_handful() {
         return !(p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area)) ||
                vertices_on(faces[r], into, faces);
     };
+    auto in_one_plane = [&](int r) {
+        const Proxy& p = proxies_[r];
+        return p.faces >= 2 && p.faces < options_.min_quadric_faces && p.fitted &&
+               p.fit_error <= kStoredPrecision * kStoredPrecision;
+    };
     return merge_least_cost(
         [&](int a, int b) { return handful(a, b) || handful(b, a); },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
+            const bool within_noise = u.moments[0] * u.fit.mean_squared <= noise_energy(a) + noise_energy(b);
+            auto joins = [&](int r, int other) {
+                return !in_one_plane(r) || within_noise || vertices_on(faces[r], other, faces);
+            };
+            if (!joins(a, b) || !joins(b, a)) return false;
             return !union_on_two_parts(u, a, b) && !faces_both_ways(u.fit.quadric, faces[a], faces[b]);
         });
 }
