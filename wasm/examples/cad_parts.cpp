@@ -1203,6 +1203,39 @@ Part dish(const PartOptions& o) {
     return b.finish("dish");
 }
 
+// A slice of sheet whose two long edges are rolled round (a stadium in section, as the
+// segments of a sheet-metal hinge in the ABC dataset): each flat face two long triangles
+// tangent to a half cylinder of 63 facets, each end a fan; 6 faces.
+Part rolled_sheet(const PartOptions& o) {
+    PartBuilder b(o);
+    const double W = 0.6, L = 0.025, T = 0.032, r = T / 2;
+    const int top = b.surface(plane({0, 0, T}, Vec3::UnitZ())), bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int right = b.surface(cylinder({W, 0, r}, Vec3::UnitY(), r)), left = b.surface(cylinder({0, 0, r}, Vec3::UnitY(), r));
+    const int front = b.surface(plane({0, 0, 0}, -Vec3::UnitY())), rear = b.surface(plane({0, L, 0}, Vec3::UnitY()));
+    // The section at y = 0, a closed loop: the bottom edge, the right roll up, the top edge,
+    // the left roll down. The band along y gives quad j (from point j to the next) to label[j].
+    const int facets = b.count(63);
+    std::vector<Vec3> section{{0, 0, 0}};
+    std::vector<int> label{bottom};
+    auto roll = [&](const Vec3& start, double centre_x, double from, int surface) {
+        for (int k = 0; k < facets; ++k) {
+            const double angle = from + kPi * k / facets;
+            section.push_back(k == 0 ? start : Vec3(centre_x + r * portable::cos(angle), 0, r + r * portable::sin(angle)));
+            label.push_back(surface);
+        }
+    };
+    roll({W, 0, 0}, W, -kPi / 2, right);
+    section.emplace_back(W, 0, T);
+    label.push_back(top);
+    roll({0, 0, T}, 0, kPi / 2, left);
+    std::vector<Vec3> far;
+    for (const Vec3& p : section) far.emplace_back(p.x(), L, p.z());
+    b.band(section, far, b.count(1), true, [&](int j) { return label[j]; });
+    b.fill(section, Vec3(W / 2, 0, r), b.count(2), front);
+    b.fill(far, Vec3(W / 2, L, r), b.count(2), rear);
+    return b.finish("rolled_sheet");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -1225,6 +1258,7 @@ std::vector<std::string> part_names() {
     names.push_back("angled_cut");
     names.push_back("bowl");
     names.push_back("dish");
+    names.push_back("rolled_sheet");
     return names;
 }
 
@@ -1254,6 +1288,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "angled_cut") return angled_cut(options);
     if (name == "bowl") return bowl(options);
     if (name == "dish") return dish(options);
+    if (name == "rolled_sheet") return rolled_sheet(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 

@@ -948,12 +948,16 @@ Classification Lloyd::classify_union(const Union& u) const {
     return classify(u.fit.quadric, frame.center, frame.radius, options_.classify);
 }
 
+Lloyd::Parts Lloyd::union_parts(const Union& u, int a, int b) const {
+    const double area = std::max(u.moments[0], 1e-300);
+    const double margin = 2 * std::sqrt(std::max(u.fit.mean_squared, (region_noise_[a] + region_noise_[b]) / area));
+    return parts(u.fit.quadric, classify_union(u), margin, a, b);
+}
+
 bool Lloyd::union_on_two_parts(const Union& u, int a, int b) const {
     // As for a region (invalid): a union whose quadric has two parts is fine while its
     // faces lie on one of them.
-    const double area = std::max(u.moments[0], 1e-300);
-    const double margin = 2 * std::sqrt(std::max(u.fit.mean_squared, (region_noise_[a] + region_noise_[b]) / area));
-    return on_two_parts(u.fit.quadric, parts(u.fit.quadric, classify_union(u), margin, a, b), area);
+    return on_two_parts(u.fit.quadric, union_parts(u, a, b), std::max(u.moments[0], 1e-300));
 }
 
 bool Lloyd::union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces,
@@ -1650,6 +1654,14 @@ bool Lloyd::merge_handful() {
     return merge_least_cost(
         [&](int a, int b) { return handful(a, b) || handful(b, a); },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
+            if (in_one_plane(a) || in_one_plane(b)) {
+                // Exact faces on the other part of the union's quadric are a face there,
+                // however few: two triangles of a sheet's face and its end face hold a pair
+                // of planes exactly.
+                const Parts p = union_parts(u, a, b);
+                const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
+                if (p.count[minor] > 0 && p.weight[minor] >= options_.split_fraction * u.moments[0]) return false;
+            }
             const bool within_noise = u.moments[0] * u.fit.mean_squared <= noise_energy(a) + noise_energy(b);
             auto joins = [&](int r, int other) {
                 return !in_one_plane(r) || within_noise || vertices_on(faces[r], other, faces);

@@ -258,7 +258,9 @@ private:
     };
     Union fit_union(const std::vector<int>& regions) const;
     Classification classify_union(const Union& u) const;
-    // Whether the union of a and b would be an invalid region.
+    // The faces of a and b on each part of their union's quadric (beyond the margin a
+    // region's validity is judged with), and whether that union would be an invalid region.
+    Parts union_parts(const Union& u, int a, int b) const;
     bool union_on_two_parts(const Union& u, int a, int b) const;
     // Whether the union lies on a plane_pair; `error`: errors_against its quadric.
     bool union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces,
