@@ -31,6 +31,10 @@ const paperCases = [
   ['joint.off', 30, null, null],
   ['rocker_arm.obj', 20, null, null],
 ];
+// Projected RMS at the paper's counts in the bench run of 2026-11-21 (9078a1e), when issue 11
+// asked to keep within 5 % of it (fandisk's and joint's then partly from plane pairs).
+const rmsIssue11 = { 'fandisk.off': 1.57e-4, 'bunny_closed.off': 2.00e-3, 'mask.off': 3.28e-3, 'homer.obj': 7.80e-4,
+  'chess_pawn.stl': 1.65e-3, 'csg.off': 5.09e-3, 'joint.off': 1.40e-4, 'rocker_arm.obj': 1.55e-3 };
 const curveCounts = [5, 10, 15, 20, 30, 40, 60, 80, 100];
 const scalingFaces = [10000, 40000, 160000, 640000, 1500000];
 
@@ -274,10 +278,15 @@ for (const r of rows) {
 const slower = rows.filter((r) => r.lloyd > r.planar.vsa_s);
 const errorMisses = rows.filter((r) => r.rms > (r.file === 'fandisk.off' ? 1.0e-3 : r.planar.rms / 5));
 const wasmMisses = rows.filter((r) => r.wasmLloyd / r.lloyd > 1.6);
+const keptMisses = rows.filter((r) => r.rms > 1.05 * rmsIssue11[r.file]);
+const percent = (x) => `${x >= 0 ? '+' : '−'}${f(Math.abs(100 * x), 0)} %`;
 lines.push('', '**Targets.**',
   `- Lloyd stage no slower than the planar peer: ${slower.length ? `missed on ${slower.map((r) => `${r.file} (${f(r.lloyd / r.planar.vsa_s, 2)}×)`).join(', ')}` : 'met on every mesh'}.`,
   `- Projected RMS at most one fifth of the peer's (fandisk/22 ≤ 1.0e-3): ${errorMisses.length ? `missed on ${errorMisses.map((r) => `${r.file} (${f(r.rms / r.planar.rms, 2)} of the peer's)`).join(', ')}` : 'met on every mesh'}.`,
   `- WASM/native ≤ 1.6 (warm module): ${wasmMisses.length ? `missed on ${wasmMisses.map((r) => r.file).join(', ')}` : 'met on every mesh'}.`,
+  `- Projected RMS within 5 % of its figure when issue 11 was opened (2026-11-21): ${keptMisses.length ? `missed on ${keptMisses.map((r) => `${r.file} (${percent(r.rms / rmsIssue11[r.file] - 1)})`).join(', ')}` : 'met on every mesh'}. ` +
+    'Free-form RMS at a count is one draw of Lloyd\'s minima: measured 2026-11-28 over seeds 1–8, homer/61 spans 7.2–9.2e-4 ' +
+    'and rocker_arm/20 1.76–1.90e-3 (seed 1, the table\'s, the worst but one on homer and the median on rocker_arm); with `--init paper`, 7.85e-4 and 2.00e-3 at every seed.',
   '', 'The paper\'s times are for its own (larger) versions of these models on a 2006 Xeon: a reference, not a comparison.', '');
 lines.push('### Post-processing', '',
   'Native, medians; the stages\' seconds, and the samples the measurement chose for a 0.5 % standard error of the RMS',
