@@ -27,7 +27,7 @@ std::vector<OptionSpec> make_schema() {
                  [](Options& o, const json& v) { o.lloyd.max_iterations = v.get<int>(); },
                  [](const Options& o) { return json(o.lloyd.max_iterations); }});
     s.push_back({"seed", OptionKind::integer, 0, kMaxSafeInteger, {},
-                 "drives the random choices (seed faces); the same seed gives the same result",
+                 "drives the random choices (the seed faces within charts; with init 'paper' none matter); the same seed gives the same result",
                  [](Options& o, const json& v) { o.lloyd.seed = static_cast<std::uint64_t>(v.get<double>()); },
                  [](const Options& o) { return json(o.lloyd.seed); }});
     s.push_back({"init", OptionKind::choice, 0, 0, {"features", "paper"},
