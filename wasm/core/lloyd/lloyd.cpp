@@ -1636,9 +1636,13 @@ bool Lloyd::merge_handful() {
     // whatever the roughness beside them says (a coarse tessellation's sag counts as
     // roughness, and a flat face beside a bend gets the bend's): they join a neighbour only
     // if the union stays within the noise of the two, as a facet of a coarse cylinder does
-    // with the facets beside it, or as a piece of the other's surface (vertices_on). A face of two long triangles rolled at its edge into a
-    // half cylinder (an ABC sheet-metal hinge) bent the roll's quadric 20 times beyond that
-    // noise, and the union was typed a cylinder of three times the roll's radius.
+    // with the facets beside it, or as a piece of the neighbour's surface (vertices_on). A
+    // face of two long triangles rolled at its edge into a half cylinder (an ABC sheet-metal
+    // hinge) bent the roll's quadric 20 times beyond that noise, and the union was typed a
+    // cylinder of three times the roll's radius. Nor do they join a union that puts faces
+    // on a second part, however few: two triangles of a sheet's face and its end face hold
+    // a pair of planes exactly, and the three faces a part needs otherwise (against noise)
+    // let them merge.
     const RegionFaces faces = faces_by_region();
     auto handful = [&](int r, int into) {
         const Proxy& p = proxies_[r];
@@ -1654,20 +1658,18 @@ bool Lloyd::merge_handful() {
     return merge_least_cost(
         [&](int a, int b) { return handful(a, b) || handful(b, a); },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
+            const double area = std::max(u.moments[0], 1e-300);
+            const Parts p = union_parts(u, a, b);
             if (in_one_plane(a) || in_one_plane(b)) {
-                // Exact faces on the other part of the union's quadric are a face there,
-                // however few: two triangles of a sheet's face and its end face hold a pair
-                // of planes exactly.
-                const Parts p = union_parts(u, a, b);
                 const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
-                if (p.count[minor] > 0 && p.weight[minor] >= options_.split_fraction * u.moments[0]) return false;
+                if (p.count[minor] > 0 && p.weight[minor] >= options_.split_fraction * area) return false;
             }
             const bool within_noise = u.moments[0] * u.fit.mean_squared <= noise_energy(a) + noise_energy(b);
             auto joins = [&](int r, int other) {
                 return !in_one_plane(r) || within_noise || vertices_on(faces[r], other, faces);
             };
-            if (!joins(a, b) || !joins(b, a)) return false;
-            return !union_on_two_parts(u, a, b) && !faces_both_ways(u.fit.quadric, faces[a], faces[b]);
+            return joins(a, b) && joins(b, a) && !on_two_parts(u.fit.quadric, p, area) &&
+                   !faces_both_ways(u.fit.quadric, faces[a], faces[b]);
         });
 }
 
