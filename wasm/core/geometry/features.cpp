@@ -592,13 +592,22 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // surface by the sagitta of the arc across them, about altitude × dihedral / 8 over
     // the chords (the largest of a face's); a fit leaves an RMS of up to as much, the
     // vertices lying on the surface. Per face: a curved face beside a flat one in a chart
-    // (a fillet) keeps its own.
+    // (a fillet) keeps its own. A flat face (in one plane with a neighbour, as no noise
+    // leaves it) over four times as wide as the facet across its bend is no chord of that
+    // arc, whose facets differ little in width: it gets the facet's sag. A sheet's face of
+    // two long triangles beside a rolled edge of 7° facets took the sag of a 7° turn over
+    // its own width, which explained a region of the face and half the roll.
     constexpr double kSagittaRms = 1.0;
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
+        bool flat = false;
+        for (int e = g.begin(f); e < g.end(f) && !flat; ++e) flat = angle[e] == 0 && exactly_coplanar(model, f, g.neighbor[e]);
         double sagitta = 0;
-        for (int e = g.begin(f); e < g.end(f); ++e)
-            if (chord[e]) sagitta = std::max(sagitta, width[f] * angle[e] / 8);
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            if (!chord[e]) continue;
+            const double w = flat && width[f] > 4 * width[g.neighbor[e]] ? width[g.neighbor[e]] : width[f];
+            sagitta = std::max(sagitta, w * angle[e] / 8);
+        }
         out.roughness[f] = std::hypot(per_chart[out.chart[f]], kSagittaRms * sagitta);
     }
     return out;
