@@ -95,14 +95,15 @@ bool has_two_parts(const Classification& c);
 int part_of(const Classification& c, const Vec3& p, double margin = 0);
 
 // A region lies on two parts of its quadric when, beyond the margin, both parts hold at
-// least `fraction` of its weight and three of its points. Callers pass a margin of twice
-// the region's RMS distance to the quadric.
+// least `fraction` of its weight and `points` of its points (three: a stray noisy point
+// makes no part; exact data may say one is enough). Callers pass a margin of twice the
+// region's RMS distance to the quadric.
 struct PartWeights {
     double weight[2] = {0, 0};
     int count[2] = {0, 0};
-    bool both(double total, double fraction = 1e-3) const {
+    bool both(double total, double fraction = 1e-3, int points = 3) const {
         const int minor = weight[0] < weight[1] ? 0 : 1;
-        return count[minor] >= 3 && weight[minor] >= fraction * total;
+        return count[minor] >= points && weight[minor] >= fraction * total;
     }
 };
 

@@ -1660,10 +1660,7 @@ bool Lloyd::merge_handful() {
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
             const double area = std::max(u.moments[0], 1e-300);
             const Parts p = union_parts(u, a, b);
-            if (in_one_plane(a) || in_one_plane(b)) {
-                const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
-                if (p.count[minor] > 0 && p.weight[minor] >= options_.split_fraction * area) return false;
-            }
+            if ((in_one_plane(a) || in_one_plane(b)) && p.both(area, options_.split_fraction, 1)) return false;
             const bool within_noise = u.moments[0] * u.fit.mean_squared <= noise_energy(a) + noise_energy(b);
             auto joins = [&](int r, int other) {
                 return !in_one_plane(r) || within_noise || vertices_on(faces[r], other, faces);
