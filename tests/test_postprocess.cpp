@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <set>
 
@@ -135,6 +136,48 @@ TEST(GraphCut, AnchoredFacesAndFacesTouchingAThirdRegionStay) {
         for (int e = g.begin(f); e < g.end(f); ++e) around.insert(before[g.neighbor[e]]);
         if (around.size() >= 3) EXPECT_EQ(roof.labels[f], before[f]) << "face " << f << " touches three regions";
     }
+}
+
+TEST(GraphCut, AStrayPieceRejoinsARegionItContinuesIntoNotOneAcrossACrease) {
+    // Right of the roof's ridge (a crease here), a one-column strip of region 1 lies cut off
+    // from region 1's main part, between the ridge and regions 2 and 3, each of which shares
+    // half as many edges with it as the ridge does. A piece cut off a fillet by the cut meets
+    // the plane beside it at a crease; it is of the fillet's side (seen on an ABC part: a
+    // flange face took two rows of its blend and came out a cylinder of 100 times the part).
+    Roof roof = make_roof(40);
+    const Frame& fr = roof.model.frame;
+    const DualGraph& g = roof.model.graph;
+    auto x_of = [&](int f) { return fr.to_input(roof.model.barycentres[f]).x(); };
+    auto y_of = [&](int f) { return fr.to_input(roof.model.barycentres[f]).y(); };
+    std::vector<int> strip;
+    for (int f = 0; f < roof.model.face_count(); ++f) {
+        const double x = x_of(f), y = y_of(f);
+        if (x < 0) roof.labels[f] = 0;
+        else if (x > 0.6) roof.labels[f] = 1;
+        else if (x < 0.05 && std::abs(y) < 0.8) roof.labels[f] = 1, strip.push_back(f);
+        else roof.labels[f] = y < 0 ? 2 : 3;
+    }
+    ASSERT_EQ(strip.size(), 64u);
+    std::vector<char> crease(g.neighbor.size(), 0);
+    int ridge_links = 0;
+    for (int f = 0; f < roof.model.face_count(); ++f)
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            crease[e] = (x_of(f) < 0) != (x_of(g.neighbor[e]) < 0);
+            ridge_links += crease[e] && std::find(strip.begin(), strip.end(), f) != strip.end();
+        }
+    ASSERT_EQ(ridge_links, 32);
+    roof.planes = {roof.planes[0], roof.planes[1], roof.planes[1], roof.planes[1]};
+    // Only the ridge's boundary between regions 0 and 2 is cut (exact planes: it stays);
+    // then the pieces are reconnected.
+    const std::vector<char> regions{1, 0, 1, 0};
+    const std::vector<int> before = roof.labels;
+    BoundarySmoother smoother(roof.model, roof.planes, roof.labels, {}, SmoothingOptions{}, &crease, &regions);
+    ASSERT_EQ(smoother.pair_count(), 1);
+    while (smoother.step()) {
+    }
+    for (int f : strip) EXPECT_TRUE(roof.labels[f] == 2 || roof.labels[f] == 3) << "face " << f << ": " << roof.labels[f];
+    for (int f = 0; f < roof.model.face_count(); ++f)
+        if (std::find(strip.begin(), strip.end(), f) == strip.end()) EXPECT_EQ(roof.labels[f], before[f]) << "face " << f;
 }
 
 TEST(Projection, FootPointsLieOnTheSurfaceAndAreNearest) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -240,15 +241,22 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
             // paraboloid curving sharply away from the strip than to their plane. A
             // candidate that strays from the edges' midpoints by an order of magnitude
             // more than another, beyond the tessellation's own deviation, is not the
-            // mesh's surface.
+            // mesh's surface. The midpoints carry the noise too, so the least stray is
+            // itself mostly noise and ten times it lets a candidate bend away by seven σ
+            // (a strip's cylinder, 12 σ off its midpoints, passed): on a noisy mesh a
+            // candidate may also stray beyond the least by no more than the cap past
+            // which a point tells of something else than the region's surface.
             double allowed = floor2;
             for (double t : s.midpoint_tolerances) allowed += t * t / s.midpoint_tolerances.size();
             std::vector<double> strays;
             for (const TypedFit& c : candidates) strays.push_back(midpoint_mean_square(s, c.quadric, false));
             const double least = *std::min_element(strays.begin(), strays.end());
+            const double noise_bound = s.noise > 0 ? least + allowed + (kNoiseCap * s.noise) * (kNoiseCap * s.noise)
+                                                   : std::numeric_limits<double>::infinity();
             std::vector<TypedFit> kept;
             for (std::size_t i = 0; i < candidates.size(); ++i)
-                if (strays[i] <= kRunAway * kRunAway * (least + allowed)) kept.push_back(candidates[i]);
+                if (strays[i] <= kRunAway * kRunAway * (least + allowed) && strays[i] <= noise_bound)
+                    kept.push_back(candidates[i]);
             if (!kept.empty()) candidates.swap(kept);
         }
     }

@@ -183,12 +183,19 @@ void BoundarySmoother::reconnect() {
     }
     for (int p = 0; p < static_cast<int>(piece_area.size()); ++p) {
         if (largest[piece_label[p]] == p) continue;
-        std::map<int, int> shared;  // neighbouring label → shared edges
+        // Edges across a crease count only where the piece has no other: a piece cut off a
+        // fillet by the cut continues into the fillet, not into the plane it meets at a crease.
+        std::map<int, std::pair<int, int>> shared;  // neighbouring label → (smooth, all) shared edges
         for (int f = 0; f < n; ++f)
             if (piece[f] == p)
                 for (int e = g.begin(f); e < g.end(f); ++e)
-                    if (piece[g.neighbor[e]] != p) ++shared[labels_[g.neighbor[e]]];
-        int best = -1, best_count = 0;
+                    if (piece[g.neighbor[e]] != p) {
+                        auto& [smooth, all] = shared[labels_[g.neighbor[e]]];
+                        smooth += !crease_ || !(*crease_)[e];
+                        ++all;
+                    }
+        int best = -1;
+        std::pair<int, int> best_count{0, 0};
         for (const auto& [label, edges] : shared)
             if (edges > best_count) best = label, best_count = edges;
         if (best < 0) continue;  // an isolated piece (its own component): keep it
