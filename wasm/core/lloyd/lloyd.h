@@ -266,9 +266,10 @@ private:
     bool union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces,
                              const std::array<double, 2>& error) const;
     // Merges the adjacent pair, among those `eligible`, whose union costs least and is
-    // `acceptable`.
+    // `acceptable`; `merged` and `merged_cost`, if given, receive the pair and its cost.
     bool merge_least_cost(const std::function<bool(int, int)>& eligible,
-                          const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable);
+                          const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable,
+                          std::pair<int, int>* merged = nullptr, double* merged_cost = nullptr);
     bool invalid(int proxy, Parts* parts = nullptr) const;
     // Whether regions on a plane_pair are split (and refused as unions): with the automatic
     // count, which promises one region per surface, and below a target count, where a split
@@ -336,8 +337,9 @@ private:
     // its own do.
     bool vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const;
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least;
-    // one exactly planar, only into a neighbour its vertices lie on.
-    bool merge_handful();
+    // one exactly planar, only into a neighbour its vertices lie on. Not a pair rejected
+    // from this very partition; `merged` and `cost` receive the pair and its union's cost.
+    bool merge_handful(std::pair<int, int>* merged, double* cost);
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
     // surface with (one_surface), the cheapest: whether any.
     bool merge_slivers();
@@ -469,13 +471,20 @@ private:
         std::uint64_t state = 0;  // partition_hash() of `before`
         std::pair<int, int> pair{-1, -1};
         double unexplained = 0;  // unexplained() before it
+        double energy = 0;       // the energy before it
         double margin = 0;       // the pair's noise, and `convergence` of the energy
+        bool handful = false;    // merge_handful's: judged by the energy (see judge_merge)
         Snapshot merged;         // Lloyd settled after it, while its reference stage runs
         double merged_unexplained = 0;
     };
     PendingMerge pending_merge_;
-    // unexplained() after a Lloyd stage from a partition (its partition_hash()), no merge made.
-    std::pair<std::uint64_t, double> reference_{0, 0};
+    // unexplained() and the energy after a Lloyd stage from a partition (its
+    // partition_hash()), no merge made.
+    struct Reference {
+        std::uint64_t state = 0;
+        double unexplained = 0, energy = 0;
+    };
+    Reference reference_;
     std::vector<std::pair<std::uint64_t, std::pair<int, int>>> rejected_merges_;
     Snapshot snapshot_;
     Operation last_operation_ = Operation::initialize;
