@@ -227,6 +227,34 @@ TEST(Readers, PolygonsAreFannedAndDegenerateFacesDropped) {
     EXPECT_EQ(m.source_face, (std::vector<int>{0, 1, 2, 4}));
 }
 
+TEST(Readers, AConcavePolygonIsCutInsideItAndABackslashContinuesItsLine) {
+    // A wall round a notch, as Rhino writes it: one face of eight vertices, its line continued
+    // with a backslash (CRLF). Fanned from its first vertex, a triangle covered the notch.
+    const std::string obj =
+        "v 0 0 5\r\nv 3 0 5\r\nv 3 1 5\r\nv 1 1 5\r\nv 1 2 5\r\nv 3 2 5\r\nv 3 3 5\r\nv 0 3 5\r\n"
+        "f 1/1/1 2/2/2 3/3/3 4/4/4 \\\r\n5/5/5 6/6/6 7/7/7 8/8/8\r\n";
+    for (const bool reversed : {false, true}) {
+        std::string text = obj;
+        if (reversed) text.replace(text.find("f 1/1/1"), std::string::npos, "f 8 7 6 5 4 \\\n 3 2 1\n");
+        const Mesh m = read_text("wall.obj", text);
+        ASSERT_EQ(m.triangles.size(), 6u) << "reversed " << reversed;
+        double area = 0;
+        Vec3 normal = Vec3::Zero();
+        for (const Triangle& t : m.triangles) {
+            const Vec3 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+            const Vec3 n = (b - a).cross(c - a);
+            area += n.norm() / 2;
+            normal += n;
+            const Vec3 centre = (a + b + c) / 3;
+            EXPECT_FALSE(centre.x() > 1 && centre.y() > 1 && centre.y() < 2) << "a triangle in the notch";
+        }
+        EXPECT_NEAR(area, 7, 1e-12);  // 3 × 3 less the notch: no triangle outside the wall
+        EXPECT_NEAR(normal.norm() / 2, 7, 1e-12);  // and all facing one way
+        EXPECT_EQ(normal.z() > 0, !reversed);
+    }
+    EXPECT_NE(read_error("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\ 3\n").find("bad face vertex"), std::string::npos);
+}
+
 TEST(Readers, OffQuirksFromTheSharedMeshes) {
     // Counts on the keyword line, CRLF, comments, blank lines, exponents like 1e-006, colours.
     const std::string off = "OFF 4 2 0\r\n# comment\r\n\r\n  \r\n0 0 0\r\n1e-006 0 1\r\n1 1 0 255 0 0\r\n"

@@ -1,4 +1,5 @@
 #include "io/mesh.h"
+#include "io/triangulate.h"
 
 #include <cmath>
 #include <cstring>
@@ -70,11 +71,15 @@ Mesh build_mesh(const PolygonSoup& soup) {
     }
     mesh.input_vertex_count = static_cast<int>(mesh.vertices.size());
 
-    int fanned = 0;
+    int triangles_in = 0;
+    std::vector<Triangle> pieces;
     for (std::size_t f = 0; f < soup.polygon_count(); ++f) {
         const int begin = soup.polygon_start[f], end = soup.polygon_start[f + 1];
-        for (int k = begin + 1; k + 1 < end; ++k, ++fanned) {
-            const Triangle t{welded[soup.indices[begin]], welded[soup.indices[k]], welded[soup.indices[k + 1]]};
+        pieces.clear();
+        triangulate_polygon(soup.positions, soup.indices.data() + begin, static_cast<std::size_t>(end - begin), pieces);
+        for (const Triangle& piece : pieces) {
+            const int source = triangles_in++;
+            const Triangle t{welded[piece[0]], welded[piece[1]], welded[piece[2]]};
             if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
             const Vec3& a = mesh.vertices[t[0]];
             const Vec3 e1 = mesh.vertices[t[1]] - a, e2 = mesh.vertices[t[2]] - a;
@@ -83,10 +88,10 @@ Mesh build_mesh(const PolygonSoup& soup) {
             // Collinear to rounding: the cross product is noise at 1e-15 of the edges.
             if (!(twice_area > 1e-13 * longest2)) continue;
             mesh.triangles.push_back(t);
-            mesh.source_face.push_back(fanned);
+            mesh.source_face.push_back(source);
         }
     }
-    mesh.input_face_count = fanned;
+    mesh.input_face_count = triangles_in;
     // The algorithms work in the unit frame (centred, longest side 1): a triangle that is
     // degenerate there, its size lost to rounding against the model's extent, goes too.
     if (!mesh.triangles.empty()) {
@@ -105,9 +110,9 @@ Mesh build_mesh(const PolygonSoup& soup) {
         mesh.triangles.resize(kept);
         mesh.source_face.resize(kept);
     }
-    if (fanned == 0) throw std::invalid_argument("the file has no faces");
+    if (triangles_in == 0) throw std::invalid_argument("the file has no faces");
     if (mesh.triangles.empty())
-        throw std::invalid_argument("all " + std::to_string(fanned) + " triangles are degenerate (zero area)");
+        throw std::invalid_argument("all " + std::to_string(triangles_in) + " triangles are degenerate (zero area)");
 
     // Vertices no kept triangle uses stay: harmless, and the numbering stays simple.
     return mesh;

@@ -18,6 +18,9 @@ PolygonSoup read_obj(std::string_view text) {
         } else if (keyword == "f") {
             polygon.clear();
             for (std::string_view t = in.token_on_line(); !t.empty(); t = in.token_on_line()) {
+                // A backslash at the end of a line continues the face on the next (Rhino
+                // writes long polygons so).
+                if (t == "\\" && in.continue_line()) continue;
                 std::int64_t v;
                 if (!parse_integer(t.substr(0, t.find('/')), v) || v == 0)
                     in.fail("bad face vertex '" + std::string(t.substr(0, 40)) + "'");

@@ -72,6 +72,14 @@ void TextTokenizer::skip_line() {
     while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
 }
 
+bool TextTokenizer::continue_line() {
+    skip_space(false);
+    if (pos_ >= text_.size() || text_[pos_] != '\n') return false;
+    ++pos_;
+    ++line_;
+    return true;
+}
+
 void TextTokenizer::fail(const std::string& message) const {
     throw std::invalid_argument("line " + std::to_string(line_) + ": " + message);
 }

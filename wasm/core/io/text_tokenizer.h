@@ -28,6 +28,8 @@ public:
     }
     std::int64_t integer(const char* what);
     void skip_line();
+    // When nothing but white space is left on the line: moves to the next one, true.
+    bool continue_line();
     std::size_t line() const { return line_; }
 
     // "line N: " + message, as std::invalid_argument.
