@@ -715,6 +715,11 @@ bool Lloyd::judge_merge() {
     return false;
 }
 
+bool Lloyd::rejected_from(std::uint64_t state, std::pair<int, int> pair) const {
+    return std::find(rejected_merges_.begin(), rejected_merges_.end(), std::make_pair(state, pair)) !=
+           rejected_merges_.end();
+}
+
 bool Lloyd::explained(int proxy) const { return proxies_[proxy].error <= allowance(proxy); }
 
 bool Lloyd::every_region_explained() const {
@@ -1382,8 +1387,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
     const std::uint64_t state = rejected_merges_.empty() ? 0 : partition_hash();
     for (const Candidate& c : candidates) {
         const auto [i, j] = pairs[c.pair];
-        const std::pair<std::uint64_t, std::pair<int, int>> merge{state, pairs[c.pair]};
-        if (std::find(rejected_merges_.begin(), rejected_merges_.end(), merge) != rejected_merges_.end()) continue;
+        if (rejected_from(state, pairs[c.pair])) continue;
         const Quadric& q = c.u.fit.quadric;
         // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
         const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces, errors_against(q, i, j, faces));
@@ -1692,12 +1696,8 @@ bool Lloyd::merge_handful(std::pair<int, int>* merged, double* cost) {
                p.fit_error <= kStoredPrecision * kStoredPrecision;
     };
     const std::uint64_t state = rejected_merges_.empty() ? 0 : partition_hash();
-    auto rejected = [&](int a, int b) {
-        const std::pair<std::uint64_t, std::pair<int, int>> merge{state, {a, b}};
-        return std::find(rejected_merges_.begin(), rejected_merges_.end(), merge) != rejected_merges_.end();
-    };
     return merge_least_cost(
-        [&](int a, int b) { return (handful(a, b) || handful(b, a)) && !rejected(a, b); },
+        [&](int a, int b) { return (handful(a, b) || handful(b, a)) && !rejected_from(state, {a, b}); },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {
             const double area = std::max(u.moments[0], 1e-300);
             const Parts p = union_parts(u, a, b);

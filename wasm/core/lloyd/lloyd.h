@@ -326,6 +326,9 @@ private:
     // without it), plus the noise of its two regions; else it is undone. True when that
     // stage without it must run first (the partition is then the one before the merge).
     bool judge_merge();
+    // Whether merging `pair` was undone from the partition of hash `state` (judge_merge),
+    // so that it is not tried from there again.
+    bool rejected_from(std::uint64_t state, std::pair<int, int> pair) const;
     // Below a target count: judges the last insertion, then whether insertions have stopped
     // paying with every region explained.
     bool fitted_below_target();
@@ -472,7 +475,7 @@ private:
         std::pair<int, int> pair{-1, -1};
         double unexplained = 0;  // unexplained() before it
         double energy = 0;       // the energy before it
-        double margin = 0;       // the pair's noise, and `convergence` of the energy
+        double margin = 0;       // the pair's noise, `convergence` of the energy, a handful's cost
         bool handful = false;    // merge_handful's: judged by the energy (see judge_merge)
         Snapshot merged;         // Lloyd settled after it, while its reference stage runs
         double merged_unexplained = 0;
