@@ -27,11 +27,11 @@ constexpr std::size_t kMaxConcaveVertices = 4096;
 
 void triangulate_polygon(const std::vector<Vec3>& points, const int* polygon, std::size_t count,
                          std::vector<Triangle>& out) {
-    auto fan = [&](const std::vector<int>& ring) {
-        for (std::size_t k = 1; k + 1 < ring.size(); ++k) out.push_back({ring[0], ring[k], ring[k + 1]});
+    // A file's triangles come here one by one (millions of them): no allocation for them.
+    auto fan = [&](const int* ring, std::size_t n) {
+        for (std::size_t k = 1; k + 1 < n; ++k) out.push_back({ring[0], ring[k], ring[k + 1]});
     };
-    std::vector<int> ring(polygon, polygon + count);
-    if (count <= 3) return fan(ring);
+    if (count <= 3) return fan(polygon, count);
     Vec3 normal = Vec3::Zero();  // Newell's: robust for any simple polygon
     for (std::size_t i = 0; i < count; ++i) {
         const Vec3& p = points[polygon[i]];
@@ -41,7 +41,7 @@ void triangulate_polygon(const std::vector<Vec3>& points, const int* polygon, st
     }
     int drop = 0;
     normal.cwiseAbs().maxCoeff(&drop);
-    if (!(std::abs(normal[drop]) > 0)) return fan(ring);  // no area: only degenerate triangles
+    if (!(std::abs(normal[drop]) > 0)) return fan(polygon, count);  // no area: only degenerate triangles
     const int u = (drop + 1) % 3, v = (drop + 2) % 3;
     const double orientation = normal[drop] > 0 ? 1 : -1;
     std::vector<std::array<double, 2>> plane(count);
@@ -55,7 +55,7 @@ void triangulate_polygon(const std::vector<Vec3>& points, const int* polygon, st
     auto corner = [&](std::size_t b) { return turn(plane[prev[b]], plane[b], plane[next[b]]); };
     bool convex = true;
     for (std::size_t i = 0; i < count && convex; ++i) convex = corner(i) >= 0;
-    if (convex) return fan(ring);
+    if (convex) return fan(polygon, count);
     if (count > kMaxConcaveVertices)
         throw std::invalid_argument("a concave polygon of " + std::to_string(count) + " vertices (at most " +
                                     std::to_string(kMaxConcaveVertices) + " are triangulated)");
@@ -81,7 +81,7 @@ void triangulate_polygon(const std::vector<Vec3>& points, const int* polygon, st
     }
     std::vector<int> rest;
     for (std::size_t i = 0, m = k; i < remaining; ++i, m = next[m]) rest.push_back(polygon[m]);
-    fan(rest);
+    fan(rest.data(), rest.size());
 }
 
 }  // namespace vqsa

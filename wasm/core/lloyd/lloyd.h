@@ -323,8 +323,10 @@ private:
     double unexplained() const;
     // Judges the last finishing merge once Lloyd has settled around it: it stands if it
     // left no more error unexplained than before it (or than the same Lloyd stage leaves
-    // without it), plus the noise of its two regions; else it is undone. True when that
-    // stage without it must run first (the partition is then the one before the merge).
+    // without it), plus the noise of its two regions; a handful's, if it left at most
+    // kHandfulDrift times the energy, plus its union's cost and that noise. Else it is
+    // undone. True when that stage without it must run first (the partition is then the
+    // one before the merge).
     bool judge_merge();
     // Whether merging `pair` was undone from the partition of hash `state` (judge_merge),
     // so that it is not tried from there again.
@@ -473,8 +475,8 @@ private:
         Snapshot before;
         std::uint64_t state = 0;  // partition_hash() of `before`
         std::pair<int, int> pair{-1, -1};
-        double unexplained = 0;  // unexplained() before it
-        double energy = 0;       // the energy before it
+        double unexplained = 0;  // unexplained() before it, or its reference stage's if more
+        double energy = 0;       // the energy before it, likewise
         double margin = 0;       // the pair's noise, `convergence` of the energy, a handful's cost
         bool handful = false;    // merge_handful's: judged by the energy (see judge_merge)
         Snapshot merged;         // Lloyd settled after it, while its reference stage runs
