@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -20,6 +21,17 @@ namespace {
 // How far above the energy it started from the Lloyd stage after a handful merged may
 // settle (see judge_merge): an order of magnitude.
 constexpr double kHandfulDrift = 10;
+
+// FNV-1a, a word at a time: partition_hash and the memos' keys.
+struct Fnv {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    void add(std::uint64_t word) { h = (h ^ word) * 0x100000001b3ull; }
+    void add(double x) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        add(bits);
+    }
+};
 
 // The quadric through the vertices of a few hundred of the faces, evenly strided: a cheap
 // first look at whether all of them lie on one.
@@ -644,9 +656,10 @@ void Lloyd::insert_batch() {
 }
 
 std::uint64_t Lloyd::partition_hash() const {
-    std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a over the labels and the proxy count
-    for (int l : labels_) h = (h ^ static_cast<std::uint32_t>(l)) * 0x100000001b3ull;
-    return (h ^ proxies_.size()) * 0x100000001b3ull;
+    Fnv fnv;  // over the labels and the proxy count
+    for (int l : labels_) fnv.add(static_cast<std::uint64_t>(static_cast<std::uint32_t>(l)));
+    fnv.add(static_cast<std::uint64_t>(proxies_.size()));
+    return fnv.h;
 }
 
 double Lloyd::noise_energy(int proxy) const {
@@ -1458,10 +1471,37 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
            !strays(q, faces[b]);
 }
 
+namespace {
+
+// Memos are dropped whole past this many answers: a run rarely asks more before it ends,
+// and one that does asks of regions long gone.
+constexpr std::size_t kMemoLimit = std::size_t(1) << 16;
+
+template <class Value, class Compute>
+Value memoized(std::unordered_map<std::uint64_t, Value>& memo, std::uint64_t key, const Compute& compute) {
+    if (const auto found = memo.find(key); found != memo.end()) return found->second;
+    if (memo.size() >= kMemoLimit) memo.clear();
+    return memo.emplace(key, compute()).first->second;
+}
+
+}  // namespace
+
+std::uint64_t Lloyd::fingerprint(int region, const RegionFaces& faces) const {
+    Fnv fnv;
+    for (int f : faces[region]) fnv.add(static_cast<std::uint64_t>(f));
+    for (double m : proxies_[region].moments) fnv.add(m);
+    fnv.add(region_noise_[region]);
+    return fnv.h;
+}
+
 Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, const RegionFaces& faces) const {
-    std::vector<Piece> pieces;
-    for (int r : regions) pieces.push_back({&faces[r], proxies_[r].moments, region_noise_[r]});
-    return vertex_surface(pieces);
+    Fnv key;
+    for (int r : regions) key.add(fingerprint(r, faces));
+    return memoized(vertex_surfaces_, key.h, [&] {
+        std::vector<Piece> pieces;
+        for (int r : regions) pieces.push_back({&faces[r], proxies_[r].moments, region_noise_[r]});
+        return vertex_surface(pieces);
+    });
 }
 
 Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) const {
@@ -1524,11 +1564,30 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
     // Faces within ten times that of one quadric have no sag to tell from a second
     // surface: the tests on the faces decide.
     if (!(u.fit.mean_squared > 100 * stored)) return false;
-    std::vector<int> both = faces[a];
-    both.insert(both.end(), faces[b].begin(), faces[b].end());
-    // A few hundred faces' vertices first: on two surfaces they already fit no quadric.
-    if (!(fit_some_vertices(model_, both).mean_squared <= stored)) return false;
-    return vertex_surface({a, b}, faces).one;
+    Fnv key;
+    key.add(fingerprint(a, faces)), key.add(fingerprint(b, faces));
+    return memoized(vertices_on_one_surface_, key.h, [&] {
+        std::vector<int> both = faces[a];
+        both.insert(both.end(), faces[b].begin(), faces[b].end());
+        // A few hundred faces' vertices first: on two surfaces they already fit no quadric.
+        if (!(fit_some_vertices(model_, both).mean_squared <= stored)) return false;
+        return vertex_surface({a, b}, faces).one;
+    });
+}
+
+Lloyd::ExactRegion Lloyd::exact_region(int region, const RegionFaces& faces) const {
+    return memoized(exact_regions_, fingerprint(region, faces), [&] {
+        const double stored = kStoredPrecision * kStoredPrecision;
+        ExactRegion out;
+        // A few hundred faces' vertices first: most regions are on no quadric so closely.
+        if (!(fit_some_vertices(model_, faces[region]).mean_squared <= stored)) return out;
+        const Samples s = region_samples(model_, faces[region]);
+        out.vertices = moments_of(s);
+        const Fit fit = fit_taubin(out.vertices);
+        out.exact = fit.mean_squared <= stored;
+        out.determined = out.exact && fit.next_mean_squared > 4 * s.tolerance * s.tolerance;
+        return out;
+    });
 }
 
 bool Lloyd::merge_exact_pieces() {
@@ -1545,13 +1604,8 @@ bool Lloyd::merge_exact_pieces() {
     std::vector<Moments> vertices(count);
     std::vector<char> exact(count, 0), determined(count, 0);
     for (int r = 0; r < count; ++r) {
-        // A few hundred faces' vertices first: most regions are on no quadric so closely.
-        if (!(fit_some_vertices(model_, faces[r]).mean_squared <= stored)) continue;
-        const Samples s = region_samples(model_, faces[r]);
-        vertices[r] = moments_of(s);
-        const Fit fit = fit_taubin(vertices[r]);
-        exact[r] = fit.mean_squared <= stored;
-        determined[r] = exact[r] && fit.next_mean_squared > 4 * s.tolerance * s.tolerance;
+        const ExactRegion e = exact_region(r, faces);
+        vertices[r] = e.vertices, exact[r] = e.exact, determined[r] = e.determined;
     }
     std::vector<std::vector<int>> neighbours(count);
     for (const auto& [a, b] : adjacent_regions(model_, labels_)) neighbours[a].push_back(b), neighbours[b].push_back(a);
