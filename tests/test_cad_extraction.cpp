@@ -1255,3 +1255,27 @@ TEST(CadExtraction, AboveTheTrueCountGrowthStopsOnceInsertionsBuyNothing) {
     EXPECT_LT(lloyd.rms(), 1e-4);  // the facets' sagitta; a region over two surfaces leaves 1e-2
     EXPECT_LT(most, 30u);  // 51 before (50, and one more for each teleport)
 }
+
+TEST(CadExtraction, AutomaticallyTheFinishMergesPiecesOfSurfacesSeveralAtATime) {
+    // Growth past a part's surfaces leaves pieces of them, which the finish merges back.
+    // One pair per Lloyd stage, a part grown to a thousand regions (an 84K-face counter)
+    // ran into the iteration cap; pairs that share no region now merge together, their
+    // stage judged as one merge. The axle grows to 12 regions on its 5 surfaces: 7 stages
+    // of one merge each before.
+    const Model model = make_model(example_mesh("axle:20000"));
+    Lloyd lloyd(model, LloydOptions{});
+    std::size_t before = 0, most = 0, stages = 0;
+    while (lloyd.step()) {
+        const std::size_t count = lloyd.proxies().size();
+        if (lloyd.last_operation() == Operation::merge) {
+            ++stages;
+            EXPECT_LT(count, before);
+        }
+        before = count, most = std::max(most, count);
+    }
+    EXPECT_EQ(lloyd.stop_reason(), StopReason::fitted);
+    ASSERT_EQ(lloyd.proxies().size(), 5u);
+    EXPECT_LT(lloyd.rms(), 1e-4);  // exact surfaces; a region over two leaves 1e-2
+    EXPECT_GT(most, 8u);           // it did grow past its surfaces
+    EXPECT_LT(stages, most - 5);   // fewer stages than merges
+}

@@ -610,17 +610,32 @@ void Lloyd::finish() {
         // started from (a sensor housing meshed in long triangles: two exact planes merged
         // at no cost, then a region took faces across a crease, and the finish went on to
         // one quadric over three sides of the box).
+        // Far above the part's surfaces (growth overshot: an 84K-face counter grew to 1145
+        // regions), one merge per Lloyd stage ran into the iteration cap. So several pairs
+        // merge at once, up to as many as an insertion batch adds, and their stage is judged
+        // as one merge allowed what each pair would be allowed alone. A batch that fails
+        // halves the next, down to one merge at a time; one that stands doubles it. Under
+        // noise, one at a time: Lloyd's energy has many minima within the noise, and the
+        // stage after several merges settled in another (the L-bracket at 0.3 % noise put
+        // its fillet into a leg at each of eight seeds).
+        const int count = static_cast<int>(proxies_.size());
+        const int most = noisy_ ? 1 : std::max(1, static_cast<int>(count * options_.insertion_batch));
+        merge_batch_ = std::min(merge_batch_ > 0 ? merge_batch_ : most, most);
+        const int batch = merge_batch_;
         const std::vector<double> noise = region_noise_;
         double cost = 0;  // a handful's: what its union's fit costs, which it may leave
-        bool merged = merge_same_surface(true, &pending.pair);
+        bool merged = merge_same_surface(true, &pending.pairs, batch);
         if (!merged) {
             if (merge_exact_pieces()) return start_operation(Operation::merge);
-            merged = pending.handful = merge_handful(&pending.pair, &cost);
+            std::pair<int, int> pair;
+            merged = pending.handful = merge_handful(&pair, &cost);
+            if (merged) pending.pairs.push_back(pair);
         }
         if (merged) {
-            const auto [a, b] = pending.pair;
-            pending.margin = options_.convergence * pending.before.energy + std::max(cost, 0.0) +
-                             options_.noise_factor * options_.noise_factor * (noise[a] + noise[b]);
+            double pair_noise = 0;
+            for (const auto& [a, b] : pending.pairs) pair_noise += noise[a] + noise[b];
+            pending.margin = options_.convergence * pending.before.energy * static_cast<double>(pending.pairs.size()) +
+                             std::max(cost, 0.0) + options_.noise_factor * options_.noise_factor * pair_noise;
             pending_merge_ = std::move(pending);
             return start_operation(Operation::merge);
         }
@@ -683,7 +698,7 @@ double Lloyd::unexplained() const {
 
 bool Lloyd::judge_merge() {
     PendingMerge& pending = pending_merge_;
-    if (pending.pair.first < 0) return false;
+    if (pending.pairs.empty()) return false;
     // A handful's union may cost more than is explained (no other merge takes those
     // faces), so what fails when the stage settles elsewhere is the energy. Lloyd's stages
     // are no strict descent: from a partition not yet settled they drift by a per cent or
@@ -720,9 +735,11 @@ bool Lloyd::judge_merge() {
     }
     if (!stands) {
         restore(pending.before);
-        rejected_merges_.push_back({pending.state, pending.pair});
-    } else if (referenced) {
-        restore(pending.merged);
+        if (pending.pairs.size() == 1) rejected_merges_.push_back({pending.state, pending.pairs.front()});
+        merge_batch_ = std::max(1, static_cast<int>(pending.pairs.size()) / 2);
+    } else {
+        if (referenced) restore(pending.merged);
+        merge_batch_ *= 2;
     }
     pending_merge_ = {};
     return false;
@@ -1351,7 +1368,7 @@ bool Lloyd::merge_cheapest() {
     return merge_least_cost([](int, int) { return true; }, valid);
 }
 
-bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
+bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int>>* merged, int limit) {
     // Two regions lie on one surface when the union's fit explains each of them about as
     // well as its own fit does (within a quarter), or (`within_noise`) within the noise of
     // its faces; otherwise both: as well as apart, and within `precision` (an exact surface)
@@ -1398,9 +1415,13 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
     });
     const std::uint64_t state = rejected_merges_.empty() ? 0 : partition_hash();
+    // Each candidate's tests look at its two regions alone, so pairs that share no region
+    // stand or fall as they would one at a time.
+    std::vector<char> taken(proxies_.size(), 0);
+    std::vector<std::pair<int, int>> chosen;
     for (const Candidate& c : candidates) {
         const auto [i, j] = pairs[c.pair];
-        if (rejected_from(state, pairs[c.pair])) continue;
+        if (taken[i] || taken[j] || rejected_from(state, pairs[c.pair])) continue;
         const Quadric& q = c.u.fit.quadric;
         // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
         const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces, errors_against(q, i, j, faces));
@@ -1410,11 +1431,17 @@ bool Lloyd::merge_same_surface(bool within_noise, std::pair<int, int>* merged) {
         // noise (a paraboloid over half a noisy flange's face): a plane that holds both parts
         // within their noise keeps no type but its own.
         if (!c.exact && !on_vertices && !(noisy_ && q.is_plane()) && !keeps_type(i, j, q, faces)) continue;
-        if (merged) *merged = pairs[c.pair];
-        merge_into(i, {j}, c.u.fit);
-        return true;
+        Proxy& p = proxies_[i];
+        p.quadric = q, p.fit_error = c.u.fit.mean_squared, p.fitted = true;
+        chosen.push_back({j, i});
+        taken[i] = taken[j] = 1;
+        if (static_cast<int>(chosen.size()) == limit) break;
     }
-    return false;
+    if (chosen.empty()) return false;
+    merge_regions(chosen);
+    if (merged)
+        for (const auto& [gone, keep] : chosen) merged->push_back({keep, gone});
+    return true;
 }
 
 bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const {

@@ -314,9 +314,11 @@ private:
     // must not take away a face it blurs (a thin plate's side), nor fitting as well as apart
     // join two pieces of a free-form surface (which neither precision nor noise explains).
     // Under noise, also pieces that the union's plane holds within their noise, as that plane.
-    // `merged`, if given, receives the pair merged. Pairs rejected from this very partition
-    // (rejected_merges_) are not merged again.
-    bool merge_same_surface(bool within_noise = true, std::pair<int, int>* merged = nullptr);
+    // Up to `limit` pairs that share no region, least cost first; `merged`, if given,
+    // receives them. Pairs rejected from this very partition (rejected_merges_) are not
+    // merged again.
+    bool merge_same_surface(bool within_noise = true, std::vector<std::pair<int, int>>* merged = nullptr,
+                            int limit = 1);
     // The error a region may carry and be explained: its noise_energy, or its area times
     // `precision`² (kStoredPrecision² on an exact export), whichever is larger.
     double allowance(int proxy) const;
@@ -486,10 +488,10 @@ private:
     struct PendingMerge {
         Snapshot before;
         std::uint64_t state = 0;  // partition_hash() of `before`
-        std::pair<int, int> pair{-1, -1};
+        std::vector<std::pair<int, int>> pairs;  // none: no merge pending
         double unexplained = 0;  // unexplained() before it, or its reference stage's if more
         double energy = 0;       // the energy before it, likewise
-        double margin = 0;       // the pair's noise, `convergence` of the energy, a handful's cost
+        double margin = 0;       // per pair its noise and `convergence` of the energy; a handful's cost
         bool handful = false;    // merge_handful's: judged by the energy (see judge_merge)
         Snapshot merged;         // Lloyd settled after it, while its reference stage runs
         double merged_unexplained = 0;
@@ -503,6 +505,7 @@ private:
     };
     Reference reference_;
     std::vector<std::pair<std::uint64_t, std::pair<int, int>>> rejected_merges_;
+    int merge_batch_ = 0;  // how many pairs the finish may merge at once (0: not yet set)
     // The vertex tests' answers (see fingerprint), by the regions asked.
     mutable std::unordered_map<std::uint64_t, VertexSurface> vertex_surfaces_;
     mutable std::unordered_map<std::uint64_t, bool> vertices_on_one_surface_;
