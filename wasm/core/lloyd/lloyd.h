@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <set>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -315,8 +316,7 @@ private:
     // join two pieces of a free-form surface (which neither precision nor noise explains).
     // Under noise, also pieces that the union's plane holds within their noise, as that plane.
     // Up to `limit` pairs that share no region, least cost first; `merged`, if given,
-    // receives them. Pairs rejected from this very partition (rejected_merges_) are not
-    // merged again.
+    // receives them. Pairs rejected as they are (rejected) are not merged again.
     bool merge_same_surface(bool within_noise = true, std::vector<std::pair<int, int>>* merged = nullptr,
                             int limit = 1);
     // The error a region may carry and be explained: its noise_energy, or its area times
@@ -331,9 +331,12 @@ private:
     // undone. True when that stage without it must run first (the partition is then the
     // one before the merge).
     bool judge_merge();
-    // Whether merging `pair` was undone from the partition of hash `state` (judge_merge),
-    // so that it is not tried from there again.
-    bool rejected_from(std::uint64_t state, std::pair<int, int> pair) const;
+    // Whether merging regions a and b was undone (judge_merge) while they were as they are
+    // (their fingerprints): it is not tried again until one of them changes, whatever
+    // merges elsewhere did in between; under noise, only from the partition it was undone
+    // from (rejection_context). For the partition of `faces`, as it is.
+    std::function<bool(int, int)> rejected(const RegionFaces& faces) const;
+    std::uint64_t rejection_context() const;
     // Below a target count: judges the last insertion, then whether insertions have stopped
     // paying with every region explained.
     bool fitted_below_target();
@@ -345,8 +348,8 @@ private:
     // its own do.
     bool vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const;
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least;
-    // one exactly planar, only into a neighbour its vertices lie on. Not a pair rejected
-    // from this very partition; `merged` and `cost` receive the pair and its union's cost.
+    // one exactly planar, only into a neighbour its vertices lie on. Not a pair undone as
+    // it is (rejected); `merged` and `cost` receive the pair and its union's cost.
     bool merge_handful(std::pair<int, int>* merged, double* cost);
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
     // surface with (one_surface), the cheapest: whether any.
@@ -504,7 +507,8 @@ private:
         double unexplained = 0, energy = 0;
     };
     Reference reference_;
-    std::vector<std::pair<std::uint64_t, std::pair<int, int>>> rejected_merges_;
+    // Merges undone: rejection_context() and the two regions' fingerprints, in order.
+    std::set<std::array<std::uint64_t, 3>> rejected_merges_;
     int merge_batch_ = 0;  // how many pairs the finish may merge at once (0: not yet set)
     // The vertex tests' answers (see fingerprint), by the regions asked.
     mutable std::unordered_map<std::uint64_t, VertexSurface> vertex_surfaces_;
