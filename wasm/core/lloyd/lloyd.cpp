@@ -33,6 +33,13 @@ struct Fnv {
     }
 };
 
+// A region's quadric from its fit.
+void assign_fit(Proxy& p, const Fit& fit) {
+    p.quadric = fit.quadric;
+    p.fit_error = fit.mean_squared;
+    p.fitted = true;
+}
+
 // The quadric through the vertices of a few hundred of the faces, evenly strided: a cheap
 // first look at whether all of them lie on one.
 Fit fit_some_vertices(const Model& model, const std::vector<int>& faces) {
@@ -107,10 +114,7 @@ void refit_regions(const Model& model, const std::vector<int>& labels, const Llo
         Proxy& p = proxies[i];
         p.area = p.moments[0];
         if (!(p.area > 0)) continue;  // faces too small to measure (underflow): keep the seed plane
-        const Fit fit = fit_proxy(p.moments, p.faces, options);
-        p.quadric = fit.quadric;
-        p.fit_error = fit.mean_squared;
-        p.fitted = true;
+        assign_fit(p, fit_proxy(p.moments, p.faces, options));
     }
 }
 
@@ -621,10 +625,9 @@ void Lloyd::finish() {
         const int count = static_cast<int>(proxies_.size());
         const int most = noisy_ ? 1 : std::max(1, static_cast<int>(count * options_.insertion_batch));
         merge_batch_ = std::min(merge_batch_ > 0 ? merge_batch_ : most, most);
-        const int batch = merge_batch_;
         const std::vector<double> noise = region_noise_;
         double cost = 0;  // a handful's: what its union's fit costs, which it may leave
-        bool merged = merge_same_surface(true, &pending.pairs, batch);
+        bool merged = merge_same_surface(true, &pending.pairs, merge_batch_);
         if (!merged) {
             if (merge_exact_pieces()) return start_operation(Operation::merge);
             std::pair<int, int> pair;
@@ -1448,8 +1451,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int
         // noise (a paraboloid over half a noisy flange's face): a plane that holds both parts
         // within their noise keeps no type but its own.
         if (!c.exact && !on_vertices && !(noisy_ && q.is_plane()) && !keeps_type(i, j, q, faces)) continue;
-        Proxy& p = proxies_[i];
-        p.quadric = q, p.fit_error = c.u.fit.mean_squared, p.fitted = true;
+        assign_fit(proxies_[i], c.u.fit);
         chosen.push_back({j, i});
         taken[i] = taken[j] = 1;
         if (static_cast<int>(chosen.size()) == limit) break;
@@ -1952,10 +1954,7 @@ bool Lloyd::repair(const Stuck& found) {
 }
 
 void Lloyd::merge_into(int keep, const std::vector<int>& gone, const Fit& fit) {
-    Proxy& p = proxies_[keep];
-    p.quadric = fit.quadric;
-    p.fit_error = fit.mean_squared;
-    p.fitted = true;
+    assign_fit(proxies_[keep], fit);
     std::vector<std::pair<int, int>> merges;
     for (int r : gone) merges.push_back({r, keep});
     merge_regions(merges);
