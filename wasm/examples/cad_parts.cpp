@@ -892,6 +892,29 @@ Part hex_nut(const PartOptions& o) {
     return b.finish("hex_nut");
 }
 
+// A square plate with a countersunk through hole, the cone and the bore one facet row each
+// between bends of 45° (below the crease angle: one chart holds the top, the cone and the
+// bore), 24 facets round, as a CAD export of a thin plate tessellates them: 8 faces. Three
+// coaxial circles of vertices lie on one hyperboloid of revolution, so only the bend tells
+// the cone from the bore.
+Part countersunk_plate(const PartOptions& o) {
+    PartBuilder b(o);
+    const double T = 0.12, bore_r = 0.08, sink_r = 0.14, depth = sink_r - bore_r;
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ())), top = b.surface(plane({0, 0, T}, Vec3::UnitZ()));
+    const int bore = b.surface(cylinder({0, 0, 0}, Vec3::UnitZ(), bore_r));
+    const int sink = b.surface({QuadricType::cone, Vec3(0, 0, T - sink_r), Vec3::UnitZ(), 0, std::atan(1.0)});
+    const PolygonOutline outline = regular_polygon(b, 4, 0.7, b.count(6));
+    const std::vector<Vec3>& square = outline.points;
+    const auto sink_outer = at_height(onto_circle(square, Vec3::Zero(), sink_r), T);
+    const auto bore_top = at_height(onto_circle(square, Vec3::Zero(), bore_r), T - depth);
+    b.band(square, at_height(square, T), b.count(2), true, [&](int j) { return outline.side[j]; });
+    b.band(at_height(square, T), sink_outer, b.count(6), true, top);
+    b.band(sink_outer, bore_top, 1, true, sink);
+    b.band(bore_top, at_height(bore_top, 0), 1, true, bore);
+    b.band(at_height(bore_top, 0), square, b.count(6), true, bottom);
+    return b.finish("countersunk_plate");
+}
+
 // A box with every edge chamfered 45°: 6 faces, 12 chamfer strips two facets wide between
 // bends of 45° (below the crease angle, so the whole box is one chart), 8 corner triangles:
 // 26 planes.
@@ -1259,6 +1282,7 @@ std::vector<std::string> part_names() {
     names.push_back("bowl");
     names.push_back("dish");
     names.push_back("rolled_sheet");
+    names.push_back("countersunk_plate");  // last: a part's seed follows its place in this list
     return names;
 }
 
@@ -1277,6 +1301,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "rounded_block") return rounded_block(options);
     if (name == "plate_assembly") return plate_assembly(options);
     if (name == "hex_nut") return hex_nut(options);
+    if (name == "countersunk_plate") return countersunk_plate(options);
     if (name == "chamfered_box") return chamfered_box(options);
     if (name == "tube") return tube(options);
     if (name == "pencil") return pencil(options);
