@@ -1,4 +1,5 @@
 // Creases and roughness (geometry/features.h): what a tessellation's facets count as.
+#include "cad_parts.h"
 #include "geometry/features.h"
 #include "geometry/model.h"
 #include "shapes.h"
@@ -31,4 +32,28 @@ TEST(Features, FacetsOfACoarseCylinderAreChordsNotChamferEdges) {
         EXPECT_LT(features.roughness[f], 2 * sagitta) << "face " << f;
     }
     EXPECT_GT(side, 0);
+}
+
+TEST(Features, RoughnessDoesNotDependOnThePose) {
+    // A face in one plane with a neighbour (as no noise leaves it) beside a bend takes the
+    // sag of the facet across the bend, not of its own width. It was found flat only when
+    // the two normals were bitwise equal, as an axis-aligned export's are: turned, the
+    // rolled sheet's two long faces took a 7° turn over their whole width, 30 times the
+    // sag, and the procedural parts' random poses measured another mesh than their own.
+    for (const char* name : {"rolled_sheet", "plate_assembly"}) {
+        for (const bool irregular : {false, true}) {
+            std::vector<double> roughness[2];
+            for (const bool pose : {false, true}) {
+                PartOptions options;
+                options.random_pose = pose, options.irregular = irregular;
+                const Model model = make_model(make_part(name, options).mesh);
+                const Features features = detect_features(model);
+                for (double r : features.roughness) roughness[pose].push_back(r * model.frame.scale);
+            }
+            ASSERT_EQ(roughness[0].size(), roughness[1].size());
+            for (std::size_t f = 0; f < roughness[0].size(); ++f)
+                ASSERT_NEAR(roughness[0][f], roughness[1][f], 1e-3 * roughness[0][f] + 1e-9)
+                    << name << (irregular ? " irregular" : "") << ", face " << f;
+        }
+    }
 }

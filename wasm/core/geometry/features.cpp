@@ -601,7 +601,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
         bool flat = false;
-        for (int e = g.begin(f); e < g.end(f) && !flat; ++e) flat = angle[e] == 0 && exactly_coplanar(model, f, g.neighbor[e]);
+        for (int e = g.begin(f); e < g.end(f) && !flat; ++e) flat = exactly_coplanar(model, f, g.neighbor[e]);
         double sagitta = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             if (!chord[e]) continue;
