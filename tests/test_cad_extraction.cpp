@@ -1279,3 +1279,35 @@ TEST(CadExtraction, AutomaticallyTheFinishMergesPiecesOfSurfacesSeveralAtATime) 
     EXPECT_GT(most, 8u);           // it did grow past its surfaces
     EXPECT_LT(stages, most - 5);   // fewer stages than merges
 }
+
+TEST(CadExtraction, AutomaticallyAnExactExportsHandfulsMergeSeveralAtATime) {
+    // Regions of a handful of faces (fewer than min_quadric_faces) go to the neighbour they
+    // cost least, once no two regions lie on one surface. One per Lloyd stage, a gear set of
+    // 112 parts (43K faces) grown to 1 967 regions ran into the iteration cap with 730 of
+    // them merged; on an exact tessellation several now merge together. casting.off ends
+    // with three, one stage each before. A stage's merges are read off the partition: a
+    // region made of two regions of the step before.
+    const Model model = make_model(read_mesh_file(test::shared_mesh("casting.off")));
+    Lloyd lloyd(model, LloydOptions{});
+    ASSERT_TRUE(lloyd.features().exact);
+    const int handful = LloydOptions{}.min_quadric_faces;
+    std::vector<int> labels;
+    std::vector<Proxy> proxies;
+    int most = 0;  // handfuls merged by one stage that merged nothing else
+    while (lloyd.step()) {
+        if (lloyd.last_operation() == Operation::merge && !labels.empty()) {
+            std::map<int, std::set<int>> from;
+            for (std::size_t f = 0; f < labels.size(); ++f) from[lloyd.labels()[f]].insert(labels[f]);
+            int pairs = 0, with_handful = 0;
+            for (const auto& [region, before] : from) {
+                if (before.size() < 2) continue;
+                ++pairs;
+                with_handful += std::any_of(before.begin(), before.end(), [&](int r) { return proxies[r].faces < handful; });
+            }
+            if (pairs == with_handful) most = std::max(most, pairs);
+        }
+        labels = lloyd.labels(), proxies = lloyd.proxies();
+    }
+    EXPECT_EQ(lloyd.stop_reason(), StopReason::fitted);
+    EXPECT_GE(most, 3);
+}

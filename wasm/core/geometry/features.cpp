@@ -504,8 +504,8 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         for (int e = g.begin(f); e < g.end(f); ++e)
             if (f < g.neighbor[e]) link_angle.push_back(turn(g, raw, f, e));
     int rings = 0;
-    const bool exact_mesh = exact_groups(model, std::vector<int>(n, 0), 1)[0] != 0;
-    if (median(std::move(link_angle)) > options.filter_range && !exact_mesh) {
+    out.exact = exact_groups(model, std::vector<int>(n, 0), 1)[0] != 0;
+    if (median(std::move(link_angle)) > options.filter_range && !out.exact) {
         noise = std::max(noise, levels.all);
         // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
         const double ratio = 2 * noise / (0.5 * options.filter_range * median(altitude));
@@ -524,7 +524,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     }
     out.normals = filter_normals(g, start, range, options.filter_iterations);
     out.crease = find_creases(g, out.normals, options.crease_angle);
-    find_charts(g, reliable, exact_mesh, out);
+    find_charts(g, reliable, out.exact, out);
     const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
     const std::vector<char> exact = exact_groups(model, out.chart, out.chart_count);
     std::vector<double> per_chart = chart_roughness(deviations, out.chart_count, {}, exact);

@@ -28,6 +28,9 @@ struct Features {
     // Per face: the RMS distance a locally exact surface would leave on it (the noise),
     // estimated over its chart from local quadric fits at its vertices; unit frame.
     std::vector<double> roughness;
+    // Whether the mesh is an exact tessellation: half its faces or more lie in one plane
+    // with a neighbour to the stored precision, as no noise or remeshing leaves them.
+    bool exact = false;
 };
 
 Features detect_features(const Model& model, const FeatureOptions& options = {});

@@ -268,10 +268,13 @@ private:
     bool union_on_plane_pair(const Union& u, int a, int b, const RegionFaces& faces,
                              const std::array<double, 2>& error) const;
     // Merges the adjacent pair, among those `eligible`, whose union costs least and is
-    // `acceptable`; `merged` and `merged_cost`, if given, receive the pair and its cost.
+    // `acceptable`, then the next such pair sharing no region with those merged, up to
+    // `limit` pairs; `merged` and `merged_cost`, if given, receive the pairs (kept region
+    // first) and their summed cost.
     bool merge_least_cost(const std::function<bool(int, int)>& eligible,
                           const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable,
-                          std::pair<int, int>* merged = nullptr, double* merged_cost = nullptr);
+                          std::vector<std::pair<int, int>>* merged = nullptr, double* merged_cost = nullptr,
+                          int limit = 1);
     bool invalid(int proxy, Parts* parts = nullptr) const;
     // Whether regions on a plane_pair are split (and refused as unions): with the automatic
     // count, which promises one region per surface, and below a target count, where a split
@@ -326,8 +329,9 @@ private:
     double unexplained() const;
     // Judges the last finishing merge once Lloyd has settled around it: it stands if it
     // left no more error unexplained than before it (or than the same Lloyd stage leaves
-    // without it), plus the noise of its two regions; a handful's, if it left at most
-    // kHandfulDrift times the energy, plus its union's cost and that noise. Else it is
+    // without it), plus the noise of its two regions; a single handful's, if it left at
+    // most kHandfulDrift times the energy, plus its union's cost and that noise (several
+    // handfuls at once, as other merges, plus their unions' cost). Else it is
     // undone. True when that stage without it must run first (the partition is then the
     // one before the merge).
     bool judge_merge();
@@ -349,8 +353,9 @@ private:
     bool vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const;
     // A region of fewer than min_quadric_faces faces into the neighbour it costs least;
     // one exactly planar, only into a neighbour its vertices lie on. Not a pair undone as
-    // it is (rejected); `merged` and `cost` receive the pair and its union's cost.
-    bool merge_handful(std::pair<int, int>* merged, double* cost);
+    // it is (rejected). Up to `limit` such pairs sharing no region; `merged` and `cost`
+    // receive the pairs and their unions' summed cost.
+    bool merge_handful(std::vector<std::pair<int, int>>* merged, double* cost, int limit);
     // Every region of fewer than min_quadric_faces faces into a neighbour it lies on one
     // surface with (one_surface), the cheapest: whether any.
     bool merge_slivers();
@@ -494,8 +499,8 @@ private:
         std::vector<std::pair<int, int>> pairs;  // none: no merge pending
         double unexplained = 0;  // unexplained() before it, or its reference stage's if more
         double energy = 0;       // the energy before it, likewise
-        double margin = 0;       // per pair its noise and `convergence` of the energy; a handful's cost
-        bool handful = false;    // merge_handful's: judged by the energy (see judge_merge)
+        double margin = 0;       // per pair its noise and `convergence` of the energy; handfuls' cost
+        bool handful = false;    // merge_handful's: one alone is judged by the energy (see judge_merge)
         Snapshot merged;         // Lloyd settled after it, while its reference stage runs
         double merged_unexplained = 0;
     };
@@ -509,7 +514,8 @@ private:
     Reference reference_;
     // Merges undone: rejection_context() and the two regions' fingerprints, in order.
     std::set<std::array<std::uint64_t, 3>> rejected_merges_;
-    int merge_batch_ = 0;  // how many pairs the finish may merge at once (0: not yet set)
+    int merge_batch_ = 0;    // how many pairs the finish may merge at once (0: not yet set)
+    int handful_batch_ = 0;  // how many handfuls, likewise
     // The vertex tests' answers (see fingerprint), by the regions asked.
     mutable std::unordered_map<std::uint64_t, VertexSurface> vertex_surfaces_;
     mutable std::unordered_map<std::uint64_t, bool> vertices_on_one_surface_;
