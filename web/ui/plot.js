@@ -36,7 +36,10 @@ export function drawPlot(canvas, growth, result = null, marker = null) {
   for (let e = hi; e >= lo; e -= step) g.fillText(`1e${e}`, 0, y(10 ** e) + 3);
   g.fillText('proxies', w / 2 - 15, h - 4);
   g.fillText('1', pad - 2, h - 14);
-  g.fillText(String(maxN), w - 22, h - 14);
+  // Ends at the frame's right edge: a run grown to thousands of proxies has a four-digit count.
+  g.textAlign = 'right';
+  g.fillText(String(maxN), w - 6, h - 14);
+  g.textAlign = 'left';
   g.strokeStyle = colour('--vqsa-accent', '#2864c8');
   g.lineWidth = 1.5;
   g.beginPath();
