@@ -504,7 +504,14 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         for (int e = g.begin(f); e < g.end(f); ++e)
             if (f < g.neighbor[e]) link_angle.push_back(turn(g, raw, f, e));
     int rings = 0;
-    out.exact = exact_groups(model, std::vector<int>(n, 0), 1)[0] != 0;
+    // Per face: in one plane with a neighbour to the stored precision (no noise leaves it).
+    std::vector<char> flat(n, 0);
+    int flat_faces = 0;
+    for (int f = 0; f < n; ++f) {
+        for (int e = g.begin(f); e < g.end(f) && !flat[f]; ++e) flat[f] = exactly_coplanar(model, f, g.neighbor[e]);
+        flat_faces += flat[f];
+    }
+    out.exact = n > 0 && 2 * flat_faces >= n;
     if (median(std::move(link_angle)) > options.filter_range && !out.exact) {
         noise = std::max(noise, levels.all);
         // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
@@ -600,12 +607,10 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     constexpr double kSagittaRms = 1.0;
     out.roughness.resize(n);
     for (int f = 0; f < n; ++f) {
-        bool flat = false;
-        for (int e = g.begin(f); e < g.end(f) && !flat; ++e) flat = exactly_coplanar(model, f, g.neighbor[e]);
         double sagitta = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             if (!chord[e]) continue;
-            const double w = flat && width[f] > 4 * width[g.neighbor[e]] ? width[g.neighbor[e]] : width[f];
+            const double w = flat[f] && width[f] > 4 * width[g.neighbor[e]] ? width[g.neighbor[e]] : width[f];
             sagitta = std::max(sagitta, w * angle[e] / 8);
         }
         out.roughness[f] = std::hypot(per_chart[out.chart[f]], kSagittaRms * sagitta);
