@@ -1369,12 +1369,7 @@ bool Lloyd::merge_least_cost(const std::function<bool(int, int)>& eligible,
                              std::vector<std::pair<int, int>>* merged, double* merged_cost, int limit) {
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     const RegionFaces faces = faces_by_region();
-    struct Candidate {
-        double cost;
-        int pair;
-        Union u;
-    };
-    std::vector<Candidate> candidates;
+    std::vector<MergeCandidate> candidates;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         if (!eligible(i, j)) continue;
@@ -1383,17 +1378,27 @@ bool Lloyd::merge_least_cost(const std::function<bool(int, int)>& eligible,
                             proxies_[j].area * proxies_[j].fit_error;
         candidates.push_back({cost, static_cast<int>(k), std::move(u)});
     }
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return merge_disjoint(
+        pairs, std::move(candidates),
+        [&](const MergeCandidate& c) { return acceptable(c.u, pairs[c.pair].first, pairs[c.pair].second, faces); },
+        merged, merged_cost, limit);
+}
+
+bool Lloyd::merge_disjoint(const std::vector<std::pair<int, int>>& pairs, std::vector<MergeCandidate> candidates,
+                           const std::function<bool(const MergeCandidate&)>& acceptable,
+                           std::vector<std::pair<int, int>>* merged, double* merged_cost, int limit) {
+    std::sort(candidates.begin(), candidates.end(), [](const MergeCandidate& x, const MergeCandidate& y) {
         return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
     });
-    // Pairs that share no region are judged on their own two regions alone, as they would
-    // be one at a time.
+    // Each candidate's tests look at its two regions alone, so pairs that share no region
+    // stand or fall as they would one at a time; the fits taken so far touch no region a
+    // later candidate reads.
     std::vector<char> taken(proxies_.size(), 0);
     std::vector<std::pair<int, int>> chosen;  // (gone, kept)
     double cost = 0;
-    for (const Candidate& c : candidates) {
+    for (const MergeCandidate& c : candidates) {
         const auto [i, j] = pairs[c.pair];
-        if (taken[i] || taken[j] || !acceptable(c.u, i, j, faces)) continue;
+        if (taken[i] || taken[j] || !acceptable(c)) continue;
         assign_fit(proxies_[i], c.u.fit);
         chosen.push_back({j, i});
         taken[i] = taken[j] = 1;
@@ -1435,14 +1440,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int
     // coarse tessellation's pieces, vertices_on_one_surface).
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     const RegionFaces faces = faces_by_region();
-    struct Candidate {
-        double cost;
-        int pair;
-        Union u;
-        bool exact;
-        bool on_vertices;  // vertices_on_one_surface
-    };
-    std::vector<Candidate> candidates;
+    std::vector<MergeCandidate> candidates;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         const Proxy &a = proxies_[i], &b = proxies_[j];
@@ -1468,36 +1466,23 @@ bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int
         else if (vertices_on_one_surface(u, i, j, faces))
             candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, true});
     }
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-        return x.cost != y.cost ? x.cost < y.cost : x.pair < y.pair;
-    });
-    // Each candidate's tests look at its two regions alone, so pairs that share no region
-    // stand or fall as they would one at a time.
     const std::function<bool(int, int)> was_rejected = rejected(faces);
-    std::vector<char> taken(proxies_.size(), 0);
-    std::vector<std::pair<int, int>> chosen;
-    for (const Candidate& c : candidates) {
-        const auto [i, j] = pairs[c.pair];
-        if (taken[i] || taken[j] || was_rejected(i, j)) continue;
-        const Quadric& q = c.u.fit.quadric;
-        // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
-        const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces, errors_against(q, i, j, faces));
-        const bool on_vertices = c.on_vertices || (!on_faces && vertices_on_one_surface(c.u, i, j, faces));
-        if (!on_faces && !on_vertices) continue;
-        // Under noise, model selection types a piece of a plane as whatever bends within its
-        // noise (a paraboloid over half a noisy flange's face): a plane that holds both parts
-        // within their noise keeps no type but its own.
-        if (!c.exact && !on_vertices && !(noisy_ && q.is_plane()) && !keeps_type(i, j, q, faces)) continue;
-        assign_fit(proxies_[i], c.u.fit);
-        chosen.push_back({j, i});
-        taken[i] = taken[j] = 1;
-        if (static_cast<int>(chosen.size()) == limit) break;
-    }
-    if (chosen.empty()) return false;
-    merge_regions(chosen);
-    if (merged)
-        for (const auto& [gone, keep] : chosen) merged->push_back({keep, gone});
-    return true;
+    return merge_disjoint(
+        pairs, std::move(candidates),
+        [&](const MergeCandidate& c) {
+            const auto [i, j] = pairs[c.pair];
+            if (was_rejected(i, j)) return false;
+            const Quadric& q = c.u.fit.quadric;
+            // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
+            const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces, errors_against(q, i, j, faces));
+            const bool on_vertices = c.on_vertices || (!on_faces && vertices_on_one_surface(c.u, i, j, faces));
+            if (!on_faces && !on_vertices) return false;
+            // Under noise, model selection types a piece of a plane as whatever bends within its
+            // noise (a paraboloid over half a noisy flange's face): a plane that holds both parts
+            // within their noise keeps no type but its own.
+            return c.exact || on_vertices || (noisy_ && q.is_plane()) || keeps_type(i, j, q, faces);
+        },
+        merged, nullptr, limit);
 }
 
 bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const {

@@ -275,6 +275,19 @@ private:
                           const std::function<bool(const Union&, int, int, const RegionFaces&)>& acceptable,
                           std::vector<std::pair<int, int>>* merged = nullptr, double* merged_cost = nullptr,
                           int limit = 1);
+    // A candidate merge: the union of the regions of adjacent pair `pair` and what it costs.
+    struct MergeCandidate {
+        double cost;
+        int pair;
+        Union u;
+        bool exact = false;        // merge_same_surface's: within `precision`
+        bool on_vertices = false;  // merge_same_surface's: vertices_on_one_surface
+    };
+    // Merges, cheapest first (ties by pair), the candidates that share no region with one
+    // taken before and are `acceptable`, up to `limit`; as merge_least_cost reports them.
+    bool merge_disjoint(const std::vector<std::pair<int, int>>& pairs, std::vector<MergeCandidate> candidates,
+                        const std::function<bool(const MergeCandidate&)>& acceptable,
+                        std::vector<std::pair<int, int>>* merged, double* merged_cost, int limit);
     bool invalid(int proxy, Parts* parts = nullptr) const;
     // Whether regions on a plane_pair are split (and refused as unions): with the automatic
     // count, which promises one region per surface, and below a target count, where a split
