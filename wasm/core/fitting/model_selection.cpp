@@ -1,6 +1,7 @@
 #include "fitting/model_selection.h"
 
 #include "fitting/distance.h"
+#include "fitting/least_squares.h"
 #include "fitting/special_fit.h"
 
 #include <Eigen/Eigenvalues>
@@ -94,6 +95,47 @@ std::vector<TypedFit>::iterator simplest_within_scatter(std::vector<TypedFit>& c
     return simplest;
 }
 
+// The samples' weighted centroid and RMS radius: the region as classify sees it.
+struct Extent {
+    Vec3 center;
+    double radius;
+};
+Extent extent_of(const Samples& s) {
+    const Vec3 center = weighted_centroid(s);
+    double spread = 0;
+    for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - center).squaredNorm();
+    return {center, std::sqrt(spread / s.total_weight) + 1e-300};
+}
+
+// Mean squared distances below this count as zero (exact), and below this plus the
+// tessellation's deviation as no evidence (floor²): ModelSelectionOptions.
+double exact_squared(const Extent& e, const ModelSelectionOptions& options) {
+    return (options.floor * e.radius) * (options.floor * e.radius) + options.stored * options.stored;
+}
+
+double criterion(const Samples& s, double rms, int parameters, double floor2) {
+    const double n = static_cast<double>(s.points.size());
+    return n * std::log(rms * rms + floor2) + parameters * std::log(n);
+}
+
+// A general quadric as a candidate, typed by its affine type; none if no region could be
+// that surface (a pair of planes: the plane candidate is one of them; empty; two parts with
+// vertices on both).
+std::optional<TypedFit> general_candidate(const Quadric& q, const Samples& s, const Extent& e,
+                                          const ClassifyOptions& options) {
+    TypedFit g;
+    g.quadric = normalized(q);
+    g.shape = classify(q, e.center, e.radius, options);
+    g.type = q.is_plane() ? QuadricType::plane : g.shape.type;
+    g.rms = selection_rms(s, q);
+    g.parameters = degrees_of_freedom(g.type);
+    const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
+    const bool usable = g.type != QuadricType::empty && !pair &&
+                        !(has_two_parts(g.shape) && on_two_parts(g.shape, s, 2 * g.rms));
+    if (!usable || !std::isfinite(g.rms)) return std::nullopt;
+    return g;
+}
+
 constexpr ImposedType kImposedTypes[] = {ImposedType::none, ImposedType::plane, ImposedType::sphere,
                                          ImposedType::cylinder, ImposedType::cone, ImposedType::quadric};
 
@@ -134,10 +176,9 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         candidates.push_back(only);
         return {only, std::nullopt};
     }
-    const Vec3 center = weighted_centroid(s);
-    double spread = 0;
-    for (std::size_t i = 0; i < s.points.size(); ++i) spread += s.weights[i] * (s.points[i] - center).squaredNorm();
-    const double radius = std::sqrt(spread / s.total_weight) + 1e-300;
+    const Extent extent = extent_of(s);
+    const Vec3& center = extent.center;
+    const double radius = extent.radius;
 
     auto add_special = [&](const std::optional<SpecialFit>& fit) {
         if (!fit || !std::isfinite(fit->rms)) return;
@@ -195,28 +236,17 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     // inside curved surfaces; the special fits see the vertices. Both general quadrics
     // compete, each as its affine type.
     if (wanted(ImposedType::quadric))
-        for (const Quadric& q : {general, fit_taubin(moments_of(s)).quadric}) {
-            TypedFit g;
-            g.quadric = normalized(q);
-            g.shape = classify(q, center, radius, options.classify);
-            g.type = q.is_plane() ? QuadricType::plane : g.shape.type;
-            g.rms = selection_rms(s, q);
-            g.parameters = degrees_of_freedom(g.type);
-            const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
-            const bool usable = g.type != QuadricType::empty && !pair &&
-                                !(has_two_parts(g.shape) && on_two_parts(g.shape, s, 2 * g.rms));
-            if (usable && std::isfinite(g.rms)) candidates.push_back(g);
-        }
+        for (const Quadric& q : {general, fit_taubin(moments_of(s)).quadric})
+            if (const auto g = general_candidate(q, s, extent, options.classify)) candidates.push_back(*g);
 
     // A candidate of as many parameters as there are vertices passes through them whatever
     // the surface: its fit is no evidence (a 6-face region's 8 vertices lie on a quadric).
     const auto undetermined = [&](const TypedFit& c) { return static_cast<std::size_t>(c.parameters) >= s.points.size(); };
     if (!std::all_of(candidates.begin(), candidates.end(), undetermined))
         candidates.erase(std::remove_if(candidates.begin(), candidates.end(), undetermined), candidates.end());
-    const double n = static_cast<double>(s.points.size());
-    const double exact2 = (options.floor * radius) * (options.floor * radius) + options.stored * options.stored;
+    const double exact2 = exact_squared(extent, options);
     const double floor2 = exact2 + s.tolerance * s.tolerance;
-    for (TypedFit& c : candidates) c.bic = n * std::log(c.rms * c.rms + floor2) + c.parameters * std::log(n);
+    for (TypedFit& c : candidates) c.bic = criterion(s, c.rms, c.parameters, floor2);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
     if (!s.edge_midpoints.empty() && options.imposed == ImposedType::none) {
         if (candidates.front().rms * candidates.front().rms <= exact2) {
@@ -276,6 +306,52 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     for (std::size_t i = 1; i < candidates.size() && !choice.runner_up; ++i)
         if (candidates[i].type != choice.chosen.type) choice.runner_up = candidates[i];
     return choice;
+}
+
+bool descends(const TypedFit& fit) {
+    const bool cad_type = fit.type == QuadricType::plane || fit.type == QuadricType::sphere ||
+                          fit.type == QuadricType::cylinder || fit.type == QuadricType::cone;
+    return !fit.special && !cad_type;
+}
+
+ModelChoice descend(const Samples& s, const ModelChoice& choice, const ModelSelectionOptions& options) {
+    const TypedFit& start = choice.chosen;
+    if (!descends(start) || static_cast<std::size_t>(start.parameters) >= s.points.size()) return choice;
+    // Steps along an orthonormal basis of the coefficients orthogonal to the start's: they
+    // change the surface, not the scale, which the distance ignores.
+    using Coefficients = Eigen::Matrix<double, 10, 1>;
+    using Step = Eigen::Matrix<double, 9, 1>;
+    const Coefficients q0 = Eigen::Map<const Coefficients>(start.quadric.c.data()).normalized();
+    Eigen::Matrix<double, 10, 10> spanning = Eigen::Matrix<double, 10, 10>::Identity();
+    spanning.col(0) = q0;
+    const Eigen::Matrix<double, 10, 10> Q = Eigen::HouseholderQR<Eigen::Matrix<double, 10, 10>>(spanning).householderQ();
+    const Eigen::Matrix<double, 10, 9> basis = Q.rightCols<9>();
+    auto quadric_of = [&](const Step& t) {
+        Quadric q;
+        Eigen::Map<Coefficients>(q.c.data()) = q0 + basis * t;
+        return q;
+    };
+    const double cap = s.noise > 0 ? kNoiseCap * s.noise : std::numeric_limits<double>::infinity();
+    const Step t = least_squares<9>(
+        s, Step::Zero(),
+        [&](const Step& theta) {
+            const Quadric q = quadric_of(theta);
+            const double a = q.hessian_norm();
+            return [q, a, cap](const Vec3& p) {
+                const double d = std::min(taubin_distance(q, a, p), cap);
+                return q.value(p) < 0 ? -d : d;
+            };
+        },
+        1.0);
+    const Extent extent = extent_of(s);
+    const auto descended = general_candidate(quadric_of(t), s, extent, options.classify);
+    if (!descended) return choice;
+    const double floor2 = exact_squared(extent, options) + s.tolerance * s.tolerance;
+    TypedFit fit = *descended;
+    fit.bic = criterion(s, fit.rms, fit.parameters, floor2);
+    if (!(fit.bic < criterion(s, start.rms, start.parameters, floor2))) return choice;
+    // Of another type now, the fit it started from is the best candidate of another type.
+    return {fit, fit.type != start.type ? std::optional<TypedFit>(start) : choice.runner_up};
 }
 
 }  // namespace vqsa

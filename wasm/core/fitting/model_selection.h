@@ -72,4 +72,19 @@ struct ModelSelectionOptions {
 // region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
 
+// Whether descend moves a fit: a general quadric of a type no CAD face has. A special fit,
+// or a general quadric typed plane, sphere, cylinder or cone (a part's surface, which the
+// selection weighed against its rivals), stays as chosen.
+bool descends(const TypedFit& fit);
+
+// The chosen fit, if it descends, with its coefficients descended (Levenberg–Marquardt) to
+// the least RMS Taubin distance of the vertices, by which every candidate is measured and
+// the mesh is then projected: the moment and Taubin fits minimise algebraic sums, which
+// weigh each vertex by its gradient there. The descended quadric is typed anew (a
+// hyperboloid of one sheet may pass its cone to become one of two) and is chosen if the
+// criterion prefers it and some region could be it (not a pair of planes, empty, or two
+// parts with vertices on both); the fit it started from is then the runner-up if the type
+// changed.
+ModelChoice descend(const Samples& vertices, const ModelChoice& choice, const ModelSelectionOptions& options = {});
+
 }  // namespace vqsa

@@ -188,8 +188,9 @@ public:
     }
     Stage id() const override { return Stage::refit; }
     double fraction() const override {
-        const double regions = state_.proxies.empty() ? 1 : double(next_) / state_.proxies.size();
-        return 0.5 * regions + 0.5 * (simplifier_ ? simplifier_->fraction() : 0);
+        const double count = state_.proxies.empty() ? 1 : double(state_.proxies.size());
+        const double seams = descending_ ? 1 : simplifier_ ? simplifier_->fraction() : 0;
+        return 0.4 * (next_ / count) + 0.4 * seams + 0.2 * (descended_ / count);
     }
 
     bool step() override {
@@ -238,7 +239,27 @@ public:
                                                            state_.crease.empty() ? nullptr : &state_.crease,
                                                            state_.roughness.get(), state_.noisy, seams_, &may_change_);
         }
-        if (simplifier_->step()) return true;
+        if (!descending_) {
+            if (simplifier_->step()) return true;
+            descending_ = true;
+            region_faces_.assign(count, {});
+            for (int f = 0; f < model_.face_count(); ++f)
+                if (may_change_[state_.labels[f]]) region_faces_[state_.labels[f]].push_back(f);
+        }
+        // Last, once the seams have settled the faces: each general quadric descended to its
+        // vertices' distances (descend), which the projection then follows.
+        while (descended_ < count && !(may_change_[descended_] && descends(state_.choices[descended_].chosen)))
+            region_faces_[descended_++] = {};
+        if (descended_ < count) {
+            const Samples vertices =
+                region_samples(model_, region_faces_[descended_], state_.noisy ? state_.roughness.get() : nullptr);
+            ModelChoice& choice = state_.choices[descended_];
+            choice = descend(vertices, choice, seams_.selection);
+            state_.proxies[descended_].quadric = choice.chosen.quadric;
+            region_faces_[descended_] = {};
+            ++descended_;
+            return true;
+        }
         simplifier_.reset();
         FaceErrors evaluator;
         std::vector<double> errors;
@@ -257,6 +278,8 @@ private:
     std::unique_ptr<SeamSimplifier> simplifier_;
     bool started_ = false;
     int next_ = 0;
+    bool descending_ = false;
+    int descended_ = 0;
 };
 
 class ProjectStage : public PipelineStage {
