@@ -355,18 +355,17 @@ TEST(PostProcessing, FandiskEndToEnd) {
     // the region's general fit, up to 11 % on fandisk's hyperboloids).
     int general = 0;
     for (const ProxyResult& p : r.proxies) {
-        if (p.special_fit || p.type == QuadricType::plane || p.type == QuadricType::sphere ||
-            p.type == QuadricType::cylinder || p.type == QuadricType::cone)
-            continue;
+        TypedFit reported;
+        reported.type = p.type;
+        reported.special = p.special_fit;
+        reported.quadric = p.quadric;
+        reported.parameters = degrees_of_freedom(p.type);
+        if (!descends(reported)) continue;
         ++general;
         std::vector<int> faces;
         for (std::size_t f = 0; f < r.labels.size(); ++f)
             if (r.labels[f] == p.id) faces.push_back(static_cast<int>(f));
         const Samples vertices = vertex_samples(mesh.vertices, mesh.triangles, faces);
-        TypedFit reported;
-        reported.type = p.type;
-        reported.quadric = p.quadric;
-        reported.parameters = degrees_of_freedom(p.type);
         reported.rms = taubin_rms(vertices, p.quadric);
         EXPECT_GT(descend(vertices, {reported, std::nullopt}).chosen.rms, 0.999 * reported.rms) << "region " << p.id << " " << type_name(p.type);
     }

@@ -136,15 +136,18 @@ std::optional<TypedFit> general_candidate(const Quadric& q, const Samples& s, co
     return g;
 }
 
+// The four types a CAD part's faces are made of.
+bool cad_type(QuadricType type) {
+    return type == QuadricType::plane || type == QuadricType::sphere || type == QuadricType::cylinder ||
+           type == QuadricType::cone;
+}
+
 constexpr ImposedType kImposedTypes[] = {ImposedType::none, ImposedType::plane, ImposedType::sphere,
                                          ImposedType::cylinder, ImposedType::cone, ImposedType::quadric};
 
 }  // namespace
 
-bool elementary(const TypedFit& c) {
-    return c.special && (c.type == QuadricType::plane || c.type == QuadricType::sphere ||
-                         c.type == QuadricType::cylinder || c.type == QuadricType::cone);
-}
+bool elementary(const TypedFit& c) { return c.special && cad_type(c.type); }
 
 const char* imposed_type_name(ImposedType type) {
     switch (type) {
@@ -308,11 +311,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     return choice;
 }
 
-bool descends(const TypedFit& fit) {
-    const bool cad_type = fit.type == QuadricType::plane || fit.type == QuadricType::sphere ||
-                          fit.type == QuadricType::cylinder || fit.type == QuadricType::cone;
-    return !fit.special && !cad_type;
-}
+bool descends(const TypedFit& fit) { return !fit.special && !cad_type(fit.type); }
 
 ModelChoice descend(const Samples& s, const ModelChoice& choice, const ModelSelectionOptions& options) {
     const TypedFit& start = choice.chosen;
@@ -342,7 +341,7 @@ ModelChoice descend(const Samples& s, const ModelChoice& choice, const ModelSele
                 return q.value(p) < 0 ? -d : d;
             };
         },
-        1.0);
+        1.0);  // the scale of a step: the coefficients have unit norm
     const Extent extent = extent_of(s);
     const auto descended = general_candidate(quadric_of(t), s, extent, options.classify);
     if (!descended) return choice;

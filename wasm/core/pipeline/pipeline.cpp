@@ -242,14 +242,16 @@ public:
         if (!descending_) {
             if (simplifier_->step()) return true;
             descending_ = true;
+            // Last, once the seams have settled the faces: each general quadric descended to
+            // its vertices' distances (descend), which the projection then follows. Only the
+            // regions that descend get their faces; no region is without faces.
             region_faces_.assign(count, {});
-            for (int f = 0; f < model_.face_count(); ++f)
-                if (may_change_[state_.labels[f]]) region_faces_[state_.labels[f]].push_back(f);
+            for (int f = 0; f < model_.face_count(); ++f) {
+                const int r = state_.labels[f];
+                if (may_change_[r] && descends(state_.choices[r].chosen)) region_faces_[r].push_back(f);
+            }
         }
-        // Last, once the seams have settled the faces: each general quadric descended to its
-        // vertices' distances (descend), which the projection then follows.
-        while (descended_ < count && !(may_change_[descended_] && descends(state_.choices[descended_].chosen)))
-            region_faces_[descended_++] = {};
+        while (descended_ < count && region_faces_[descended_].empty()) ++descended_;
         if (descended_ < count) {
             const Samples vertices =
                 region_samples(model_, region_faces_[descended_], state_.noisy ? state_.roughness.get() : nullptr);
