@@ -238,6 +238,45 @@ TEST(Engine, TeleportsLowerTheEnergy) {
     EXPECT_LT(with, without);
 }
 
+TEST(Engine, AStopsRepairIsSettledByLloyd) {
+    // fandisk/22 stops with a region on two parts of its quadric: the repair splits it and
+    // merges another pair without Lloyd (energy × 1.55). A Lloyd stage follows, the repair
+    // runs again, and the lower of the two repaired partitions stands: here the settled one.
+    const Model model = make_model(read_mesh_file(test::shared_mesh("fandisk.off")));
+    LloydOptions options;
+    options.proxies = 22;
+    Lloyd lloyd(model, options);
+    Operation last = Operation::initialize;
+    double repaired = 0;
+    int steps = 0, repair_step = 0, iterations_after = 0;
+    while (lloyd.step()) {
+        ++steps;
+        if (lloyd.last_operation() == Operation::iterate) {
+            ++iterations_after;
+        } else {
+            last = lloyd.last_operation();
+            repaired = lloyd.energy();
+            repair_step = steps;
+            iterations_after = 0;
+        }
+    }
+    EXPECT_EQ(lloyd.stop_reason(), StopReason::proxies);
+    ASSERT_EQ(last, Operation::split);
+    EXPECT_GE(iterations_after, 2);
+    EXPECT_LT(lloyd.energy(), repaired * (1 - options.convergence));
+    EXPECT_EQ(lloyd.proxies().size(), 22u);
+
+    // Cancelled during that stage, the run ends with the repaired partition.
+    Lloyd cancelled(model, options);
+    for (int s = 0; s < repair_step + 1; ++s) ASSERT_TRUE(cancelled.step());
+    cancelled.cancel();
+    while (cancelled.step()) {
+    }
+    EXPECT_EQ(cancelled.stop_reason(), StopReason::cancelled);
+    EXPECT_EQ(cancelled.energy(), repaired);
+    EXPECT_EQ(cancelled.proxies().size(), 22u);
+}
+
 TEST(Engine, NonManifoldEdgesAndOpenBoundariesWork) {
     // Three fins on one edge (a non-manifold edge), each an open square sheet.
     PolygonSoup soup;

@@ -223,6 +223,9 @@ private:
     int insert_where_needed(int count);
     void start_operation(Operation operation);
     void stop(StopReason reason);
+    // After the stage that follows a stop's repair: `reason` none when it settled,
+    // otherwise what cut it short.
+    void end_settling(StopReason reason);
     void evaluate(const std::vector<char>* changed = nullptr);
     std::uint64_t partition_hash() const;
     bool automatic() const { return options_.proxies == 0 && options_.tolerance == 0; }
@@ -534,6 +537,10 @@ private:
     mutable std::unordered_map<std::uint64_t, bool> vertices_on_one_surface_;
     mutable std::unordered_map<std::uint64_t, ExactRegion> exact_regions_;
     Snapshot snapshot_;
+    // The stop a Lloyd stage after its repair delays (none: no such stage), and the repaired
+    // partition, which stands if the stage does no better.
+    StopReason settling_ = StopReason::none;
+    Snapshot repaired_;
     Operation last_operation_ = Operation::initialize;
     StopReason stop_reason_ = StopReason::none;
     bool cancel_requested_ = false;
