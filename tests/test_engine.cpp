@@ -275,6 +275,16 @@ TEST(Engine, AStopsRepairIsSettledByLloyd) {
     EXPECT_EQ(cancelled.stop_reason(), StopReason::cancelled);
     EXPECT_EQ(cancelled.energy(), repaired);
     EXPECT_EQ(cancelled.proxies().size(), 22u);
+
+    // So does the iteration cap, and the run stops for its count, as it did.
+    LloydOptions capped_options = options;
+    capped_options.max_iterations = lloyd.iterations() - 1;
+    Lloyd capped(model, capped_options);
+    while (capped.step()) {
+    }
+    EXPECT_EQ(capped.stop_reason(), StopReason::proxies);
+    EXPECT_EQ(capped.energy(), repaired);
+    EXPECT_EQ(capped.iterations(), capped_options.max_iterations);
 }
 
 TEST(Engine, NonManifoldEdgesAndOpenBoundariesWork) {
