@@ -266,15 +266,20 @@ TEST(Engine, AStopsRepairIsSettledByLloyd) {
     EXPECT_LT(lloyd.energy(), repaired * (1 - options.convergence));
     EXPECT_EQ(lloyd.proxies().size(), 22u);
 
-    // Cancelled during that stage, the run ends with the repaired partition.
-    Lloyd cancelled(model, options);
-    for (int s = 0; s < repair_step + 1; ++s) ASSERT_TRUE(cancelled.step());
-    cancelled.cancel();
-    while (cancelled.step()) {
+    // Cancelled during that stage, or before it, the run ends with the repaired partition
+    // (before it, with no further iteration).
+    for (int cancel_after : {repair_step, repair_step + 1}) {
+        Lloyd cancelled(model, options);
+        for (int s = 0; s < cancel_after; ++s) ASSERT_TRUE(cancelled.step());
+        const int iterations = cancelled.iterations();
+        cancelled.cancel();
+        while (cancelled.step()) {
+        }
+        EXPECT_EQ(cancelled.stop_reason(), StopReason::cancelled);
+        EXPECT_EQ(cancelled.energy(), repaired);
+        EXPECT_EQ(cancelled.proxies().size(), 22u);
+        EXPECT_EQ(cancelled.iterations(), iterations);
     }
-    EXPECT_EQ(cancelled.stop_reason(), StopReason::cancelled);
-    EXPECT_EQ(cancelled.energy(), repaired);
-    EXPECT_EQ(cancelled.proxies().size(), 22u);
 
     // So does the iteration cap, and the run stops for its count, as it did.
     LloydOptions capped_options = options;

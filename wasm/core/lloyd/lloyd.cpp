@@ -341,8 +341,9 @@ void Lloyd::end_settling(StopReason reason) {
 bool Lloyd::step() {
     if (done()) return false;
     if (cancel_requested_) {
-        // A run cancelled right after an operation still needs one flood to be consistent.
-        if (stage_iteration_ == 0 && iterating_) iterate();
+        // A run cancelled right after an operation still needs one flood to be consistent
+        // (not a stop's repair: its partition is the result).
+        if (stage_iteration_ == 0 && iterating_ && settling_ == StopReason::none) iterate();
         stop(StopReason::cancelled);
         return false;
     }
