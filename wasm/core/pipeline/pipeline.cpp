@@ -245,11 +245,11 @@ public:
             // Last, once the seams have settled the faces: each general quadric descended to
             // its vertices' distances (descend), which the projection then follows. Only the
             // regions that descend get their faces; no region is without faces.
+            std::vector<char> descending(count);
+            for (int r = 0; r < count; ++r) descending[r] = may_change_[r] && descends(state_.choices[r].chosen);
             region_faces_.assign(count, {});
-            for (int f = 0; f < model_.face_count(); ++f) {
-                const int r = state_.labels[f];
-                if (may_change_[r] && descends(state_.choices[r].chosen)) region_faces_[r].push_back(f);
-            }
+            for (int f = 0; f < model_.face_count(); ++f)
+                if (descending[state_.labels[f]]) region_faces_[state_.labels[f]].push_back(f);
         }
         while (descended_ < count && region_faces_[descended_].empty()) ++descended_;
         if (descended_ < count) {
