@@ -25,16 +25,21 @@ bool on_two_parts(const Classification& c, const Samples& s, double margin) {
     return parts.both(s.total_weight);
 }
 
-// The RMS distance by which candidates compete: Taubin's, each point's capped at
-// kNoiseCap × the samples' noise on a noisy mesh. There a region holding a few faces of
+// Where selection_rms caps each point's distance: at kNoiseCap × the samples' noise on a
+// noisy mesh. There a region holding a few faces of
 // its neighbour (a plate's rim, nine σ off its face) paid, with them alone, for a bent
 // type's parameters: the noisy plate assembly's large faces came out as spheres of radius
 // 45 and flat cones, the plane second. Beyond about 3 σ a point tells of the partition,
 // not of the region's surface.
 constexpr double kNoiseCap = 3.5;
+
+}  // namespace
+
 double selection_rms(const Samples& s, const Quadric& q) {
     return s.noise > 0 ? taubin_rms(s, q, kNoiseCap * s.noise) : taubin_rms(s, q);
 }
+
+namespace {
 
 // Whether a candidate is of the imposed type.
 bool of_type(const TypedFit& c, ImposedType type) {
@@ -348,9 +353,13 @@ ModelChoice descend(const Samples& s, const ModelChoice& choice, const ModelSele
     const double floor2 = exact_squared(extent, options) + s.tolerance * s.tolerance;
     TypedFit fit = *descended;
     fit.bic = criterion(s, fit.rms, fit.parameters, floor2);
-    if (!(fit.bic < criterion(s, start.rms, start.parameters, floor2))) return choice;
+    // The start was scored on the samples it was chosen by, which these may weigh otherwise.
+    TypedFit from = start;
+    from.rms = selection_rms(s, start.quadric);
+    from.bic = criterion(s, from.rms, from.parameters, floor2);
+    if (!(fit.bic < from.bic)) return choice;
     // Of another type now, the fit it started from is the best candidate of another type.
-    return {fit, fit.type != start.type ? std::optional<TypedFit>(start) : choice.runner_up};
+    return {fit, fit.type != start.type ? std::optional<TypedFit>(from) : choice.runner_up};
 }
 
 }  // namespace vqsa

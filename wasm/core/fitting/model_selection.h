@@ -72,19 +72,27 @@ struct ModelSelectionOptions {
 // region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
 
+// The RMS distance by which candidates compete: Taubin's, each point's capped at a few
+// times the samples' noise on a noisy mesh (beyond that a point tells of the partition, not
+// of the region's surface).
+double selection_rms(const Samples& s, const Quadric& q);
+
 // Whether descend moves a fit: a general quadric of a type no CAD face has. A special fit,
 // or a general quadric typed plane, sphere, cylinder or cone (a part's surface, which the
 // selection weighed against its rivals), stays as chosen.
 bool descends(const TypedFit& fit);
 
 // The chosen fit, if it descends, with its coefficients descended (Levenberg–Marquardt) to
-// the least RMS Taubin distance of the vertices, by which every candidate is measured and
-// the mesh is then projected: the moment and Taubin fits minimise algebraic sums, which
-// weigh each vertex by its gradient there. The descended quadric is typed anew (a
+// the least RMS Taubin distance of `samples`, the distance every candidate is measured by
+// and the mesh is then projected along: the moment and Taubin fits minimise algebraic sums,
+// which weigh each point by its gradient there. The pipeline descends over the region's
+// vertices weighted by area (VertexWeight::area), for a free-form region has no surface
+// through its vertices to recover, only its surface to approximate, as the distance between
+// the input and the projected mesh measures it. The descended quadric is typed anew (a
 // hyperboloid of one sheet may pass its cone to become one of two) and is chosen if the
-// criterion prefers it and some region could be it (not a pair of planes, empty, or two
-// parts with vertices on both); the fit it started from is then the runner-up if the type
-// changed.
-ModelChoice descend(const Samples& vertices, const ModelChoice& choice, const ModelSelectionOptions& options = {});
+// criterion, on `samples`, prefers it to the start and some region could be it (not a pair
+// of planes, empty, or two parts with vertices on both); the fit it started from is then
+// the runner-up if the type changed, its RMS measured on `samples`.
+ModelChoice descend(const Samples& samples, const ModelChoice& choice, const ModelSelectionOptions& options = {});
 
 }  // namespace vqsa

@@ -8,15 +8,24 @@
 namespace vqsa {
 
 Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
-                       const std::vector<int>& faces) {
+                       const std::vector<int>& faces, VertexWeight weight) {
     std::vector<int> vertices;
     vertices.reserve(3 * faces.size());
     for (int f : faces)
         for (int v : triangles[f]) vertices.push_back(v);
     std::sort(vertices.begin(), vertices.end());
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    std::vector<double> weights(vertices.size(), 1.0);
+    if (weight == VertexWeight::area) {
+        std::fill(weights.begin(), weights.end(), 0.0);
+        for (int f : faces) {
+            const Triangle& t = triangles[f];
+            const double third = (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm() / 6;
+            for (int v : t) weights[std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin()] += third;
+        }
+    }
     Samples out;
-    for (int v : vertices) out.add(points[v], 1.0);
+    for (std::size_t i = 0; i < vertices.size(); ++i) out.add(points[vertices[i]], weights[i]);
     return out;
 }
 
@@ -43,8 +52,9 @@ std::vector<int> sorted_copy(const std::vector<int>& faces) {
 
 }  // namespace
 
-Samples region_samples(const Model& model, const std::vector<int>& faces, const std::vector<double>* roughness) {
-    Samples out = vertex_samples(model.points, model.triangles, faces);
+Samples region_samples(const Model& model, const std::vector<int>& faces, const std::vector<double>* roughness,
+                       VertexWeight weight) {
+    Samples out = vertex_samples(model.points, model.triangles, faces, weight);
     const std::vector<int> sorted = sorted_copy(faces);
     const DualGraph& g = model.graph;
     const std::size_t stride = median_stride(sorted);

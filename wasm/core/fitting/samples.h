@@ -42,10 +42,20 @@ struct Samples {
     }
 };
 
-// Each vertex of the faces once, of weight one: under noise each vertex is one
-// measurement, whatever the size of its faces (what model selection fits).
+// How vertex_samples weighs each vertex.
+enum class VertexWeight {
+    // One: under noise each vertex is one measurement, whatever the size of its faces
+    // (what model selection fits).
+    one,
+    // A third of the area of each of the faces at it: each vertex stands for its share of
+    // the surface, as in the distance between the input and the projected mesh, which
+    // interpolates the vertices' displacements over the triangles.
+    area,
+};
+
+// Each vertex of the faces once.
 Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
-                       const std::vector<int>& faces);
+                       const std::vector<int>& faces, VertexWeight weight = VertexWeight::one);
 
 // vertex_samples of a region of the model, with the tessellation's chordal deviation there
 // as the tolerance: per face, the largest sagitta (DualGraph) across its edges inside the
@@ -54,7 +64,7 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
 // a thousand of them evenly strided. `roughness` (per face, Features::roughness; given on a
 // noisy mesh only) sets the samples' noise, the median over the same faces.
 Samples region_samples(const Model& model, const std::vector<int>& faces,
-                       const std::vector<double>* roughness = nullptr);
+                       const std::vector<double>* roughness = nullptr, VertexWeight weight = VertexWeight::one);
 
 // The scatter of a region's vertices that no surface accounts for: the median roughness
 // of its faces (as region_samples takes it) beyond the tessellation's deviation,

@@ -243,7 +243,8 @@ public:
             if (simplifier_->step()) return true;
             descending_ = true;
             // Last, once the seams have settled the faces: each general quadric descended to
-            // its vertices' distances (descend), which the projection then follows. Only the
+            // its vertices' distances, each weighted by its share of the area (descend), which
+            // the projection then follows. Only the
             // regions that descend get their faces; no region is without faces.
             std::vector<char> descending(count);
             for (int r = 0; r < count; ++r) descending[r] = may_change_[r] && descends(state_.choices[r].chosen);
@@ -253,10 +254,14 @@ public:
         }
         while (descended_ < count && region_faces_[descended_].empty()) ++descended_;
         if (descended_ < count) {
-            const Samples vertices =
-                region_samples(model_, region_faces_[descended_], state_.noisy ? state_.roughness.get() : nullptr);
+            const std::vector<int>& faces = region_faces_[descended_];
+            const std::vector<double>* roughness = state_.noisy ? state_.roughness.get() : nullptr;
             ModelChoice& choice = state_.choices[descended_];
-            choice = descend(vertices, choice, seams_.selection);
+            choice = descend(region_samples(model_, faces, roughness, VertexWeight::area), choice, seams_.selection);
+            // Reported as every type was scored, by its vertices alike.
+            const Samples vertices = region_samples(model_, faces, roughness);
+            choice.chosen.rms = selection_rms(vertices, choice.chosen.quadric);
+            if (choice.runner_up) choice.runner_up->rms = selection_rms(vertices, choice.runner_up->quadric);
             state_.proxies[descended_].quadric = choice.chosen.quadric;
             region_faces_[descended_] = {};
             ++descended_;
