@@ -285,8 +285,8 @@ lines.push('', '**Targets.**',
   `- Projected RMS at most one fifth of the peer's (fandisk/22 ≤ 1.0e-3): ${errorMisses.length ? `missed on ${errorMisses.map((r) => `${r.file} (${f(r.rms / r.planar.rms, 2)} of the peer's)`).join(', ')}` : 'met on every mesh'}.`,
   `- WASM/native ≤ 1.6 (warm module): ${wasmMisses.length ? `missed on ${wasmMisses.map((r) => r.file).join(', ')}` : 'met on every mesh'}.`,
   `- Projected RMS within 5 % of its figure when issue 11 was opened (2026-11-21): ${keptMisses.length ? `missed on ${keptMisses.map((r) => `${r.file} (${percent(r.rms / rmsIssue11[r.file] - 1)})`).join(', ')}` : 'met on every mesh'}. ` +
-    'Free-form RMS at a count is one draw of Lloyd\'s minima: measured 2026-11-28 over seeds 1–8, homer/61 spans 7.2–9.2e-4 ' +
-    'and rocker_arm/20 1.76–1.90e-3 (seed 1, the table\'s, the worst but one on homer and the median on rocker_arm); with `--init paper`, 7.85e-4 and 2.00e-3 at every seed.',
+    'Free-form RMS at a count is one draw of Lloyd\'s minima: measured 2026-11-29 over seeds 1–8, homer/61 spans 6.4–8.4e-4 ' +
+    '(median 7.5e-4) and rocker_arm/20 1.45–1.70e-3 (seed 1, the table\'s, is the worst of the eight on homer and the third best on rocker_arm); with `--init paper`, 7.13e-4 and 1.69e-3 at every seed.',
   '', 'The paper\'s times are for its own (larger) versions of these models on a 2006 Xeon: a reference, not a comparison.', '');
 lines.push('### Post-processing', '',
   'Native, medians; the stages\' seconds, and the samples the measurement chose for a 0.5 % standard error of the RMS',
