@@ -375,6 +375,20 @@ TEST(PostProcessing, AFreeFormPatchMeshedUnevenlyIsProjectedNearerWhenItsVertice
     EXPECT_LT(by_area, 0.96 * by_count) << by_area << " against " << by_count;
 }
 
+TEST(PostProcessing, VerticesWeighedByAreaCarryTheirFacesThirds) {
+    // Two triangles of areas 2 and 1 sharing an edge; a third of no area: its lone vertex
+    // carries nothing. Faces of no area only: every vertex counts one.
+    const std::vector<Vec3> points = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), Vec3(-1, 0, 0), Vec3(4, 0, 0)};
+    const std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}, {0, 1, 4}};
+    const Samples s = vertex_samples(points, triangles, {0, 1, 2}, VertexWeight::area);
+    ASSERT_EQ(s.points.size(), 5u);
+    const std::vector<double> expected = {1, 2.0 / 3, 1, 1.0 / 3, 0};
+    for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(s.weights[i], expected[i], 1e-15) << i;
+    EXPECT_NEAR(s.total_weight, 3, 1e-15);
+    const Samples flat = vertex_samples(points, triangles, {2}, VertexWeight::area);
+    EXPECT_EQ(flat.weights, std::vector<double>(3, 1.0));
+}
+
 TEST(PostProcessing, FandiskEndToEnd) {
     const Mesh mesh = read_mesh_file(test::shared_mesh("fandisk.off"));
     int smoothing_events = 0;

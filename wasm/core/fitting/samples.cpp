@@ -17,12 +17,16 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
     std::vector<double> weights(vertices.size(), 1.0);
     if (weight == VertexWeight::area) {
-        std::fill(weights.begin(), weights.end(), 0.0);
+        std::vector<double> shares(vertices.size(), 0.0);
+        double total = 0;
         for (int f : faces) {
             const Triangle& t = triangles[f];
             const double third = (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm() / 6;
-            for (int v : t) weights[std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin()] += third;
+            for (int v : t) shares[std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin()] += third;
+            total += 3 * third;
         }
+        // Faces of no area carry no surface; if none has any, every vertex counts one.
+        if (total > 0) weights.swap(shares);
     }
     Samples out;
     for (std::size_t i = 0; i < vertices.size(); ++i) out.add(points[vertices[i]], weights[i]);
