@@ -244,8 +244,8 @@ public:
             descending_ = true;
             // Last, once the seams have settled the faces: each general quadric descended to
             // its vertices' distances, each weighted by its share of the area (descend), which
-            // the projection then follows. Only the
-            // regions that descend get their faces; no region is without faces.
+            // the projection then follows. Only the regions that descend get their faces; no
+            // region is without faces.
             std::vector<char> descending(count);
             for (int r = 0; r < count; ++r) descending[r] = may_change_[r] && descends(state_.choices[r].chosen);
             region_faces_.assign(count, {});
