@@ -228,7 +228,18 @@ private:
     void end_settling(StopReason reason);
     void evaluate(const std::vector<char>* changed = nullptr);
     std::uint64_t partition_hash() const;
-    bool automatic() const { return options_.proxies == 0 && options_.tolerance == 0; }
+    // Growing: with the automatic count, and at a fixed count while regrowing (see stop).
+    bool automatic() const {
+        return (options_.proxies == 0 && options_.tolerance == 0) || regrowth_ == Regrowth::growing;
+    }
+    // The count to reach, 0 while growing as the automatic count does.
+    int target() const { return regrowth_ == Regrowth::growing ? 0 : options_.proxies; }
+    // Whether a stop at a fixed count for `reason` first grows past the count and merges back.
+    bool regrows(StopReason reason) const;
+    // At a stop for `reason`: whether the regrowth starts, or goes on from growing to merging
+    // back (then the stop waits); otherwise, once it ends, the partition it started from is
+    // restored unless it did better, and `reason` with it.
+    bool regrowth_goes_on(StopReason& reason);
     // Σ A (noise_factor · roughness)² over a region: the energy the noise explains.
     double noise_energy(int proxy) const;
     bool explained(int proxy) const;
@@ -315,8 +326,9 @@ private:
     bool split_invalid(bool plane_pairs);
     // split_invalid within the split budget, and not from a partition split from before.
     bool split(bool plane_pairs);
-    // The adjacent pair whose union fit costs least, if its union is valid.
-    bool merge_cheapest();
+    // The adjacent pair whose union fit costs least, if its union is valid; up to `limit`
+    // such pairs sharing no region, cheapest first.
+    bool merge_cheapest(int limit = 1);
     // Splits what is still invalid at the end of the stage (see lloyd.cpp).
     void ensure_valid();
     // Merges `region` into the neighbour (not `excluded`) it costs least and lies on one
@@ -537,6 +549,11 @@ private:
     mutable std::unordered_map<std::uint64_t, bool> vertices_on_one_surface_;
     mutable std::unordered_map<std::uint64_t, ExactRegion> exact_regions_;
     Snapshot snapshot_;
+    // At a fixed count: growing past it as the automatic count does, then merging back to it.
+    enum class Regrowth { untried, growing, merging, done };
+    Regrowth regrowth_ = Regrowth::untried;
+    Snapshot before_regrowth_;  // the partition it started from, which stands if it does no better
+    StopReason regrowth_reason_ = StopReason::none;  // the stop it delayed
     // The stop a Lloyd stage after its repair delays (none: no such stage), and the repaired
     // partition, which stands if the stage does no better.
     StopReason settling_ = StopReason::none;
