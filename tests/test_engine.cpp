@@ -238,6 +238,28 @@ TEST(Engine, TeleportsLowerTheEnergy) {
     EXPECT_LT(with, without);
 }
 
+TEST(Engine, ATeleportThatCannotMergeBackIsUndone) {
+    // A sheet folded up along one edge, the strip 3 % of its area: at one proxy the region
+    // lies on a pair of planes, its second part too small to split off. The teleport's proxy
+    // took one face, and no union of the two regions was valid (two parts), so the run
+    // returned two regions for the one asked. Now the teleport is undone.
+    PolygonSoup soup;
+    const Shape sheet = make_grid([](double u, double v) { return Vec3(u, v, 0); }, 0, 1, 0, 1, 30, 30);
+    const Shape strip = make_grid([](double u, double v) { return Vec3(1, u, 0.03 * v); }, 0, 1, 0, 1, 30, 2);
+    append(soup, sheet.mesh);
+    append(soup, strip.mesh);
+    const Mesh mesh = build_mesh(soup);
+    ASSERT_EQ(make_model(mesh).component_count, 1);
+    int teleports = 0;
+    const Result r = approximate(mesh, with_proxies(1), [&](const Progress& p) {
+        teleports += std::string(p.phase) == "teleport";
+        return true;
+    });
+    EXPECT_GT(teleports, 0);
+    EXPECT_EQ(r.proxies.size(), 1u);
+    EXPECT_EQ(r.stop_reason, StopReason::proxies);
+}
+
 TEST(Engine, AStopsRepairIsSettledByLloyd) {
     // fandisk/22 stops with a region on two parts of its quadric: the repair splits it and
     // merges another pair without Lloyd (energy × 1.55). A Lloyd stage follows, the repair

@@ -484,6 +484,16 @@ void Lloyd::decide() {
         // pair at a time: 133 Lloyd iterations; so: 100).
         const int batch = regrowth_ == Regrowth::merging ? std::max(1, (count - target) / 2) : 1;
         if (merge_cheapest(batch)) return start_operation(Operation::merge);
+        // A teleport that cannot merge back to the count is undone, and no more are tried
+        // (a sheet folded along one edge at one proxy: the teleport's region took one face,
+        // and no union of the two was valid, so the run ended with two regions).
+        if (teleport_pending_) {
+            teleport_pending_ = wide_pending_ = false;
+            teleports_left_ = wide_teleport_ = 0;
+            misfit_teleport_ = false, misfit_teleport_tried_ = true;
+            restore(snapshot_);
+            return decide();
+        }
         return stop(StopReason::proxies);
     }
     if (options_.tolerance > 0 && rms() <= options_.tolerance && (target == 0 || count <= target))
