@@ -302,10 +302,10 @@ bool Lloyd::regrows(StopReason reason) const {
     // Some regions unexplained, but at most half: more says the count is below the part's
     // surfaces (csg/10 leaves all ten and abc_round_cap/10 nine), where the detour found
     // nothing better, at 1.3-3.6 times the Lloyd stage. And one of them beyond `precision`
-    // too, which an exact export's regions are not held to (§7): below it the error is a
-    // fine tessellation's rounding (the turned part at 1.5M faces stopped fitted with a cone
-    // region at 2e-6 of the size in RMS, over its allowance, and the detour took 36 Lloyd
-    // iterations, 5.6 s, for nothing).
+    // as well: an exact export's regions are explained only within the stored precision, and
+    // an error below `precision` there is a fine tessellation's rounding (the turned part at
+    // 1.5M faces stopped fitted with a cone region unexplained at 2e-6 of the size in RMS,
+    // and the detour took 36 Lloyd iterations, 5.6 s, for nothing).
     int unexplained = 0;
     bool beyond_precision = false;
     for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {

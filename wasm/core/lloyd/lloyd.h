@@ -228,7 +228,7 @@ private:
     void end_settling(StopReason reason);
     void evaluate(const std::vector<char>* changed = nullptr);
     std::uint64_t partition_hash() const;
-    // Growing: with the automatic count, and at a fixed count while regrowing (see stop).
+    // Growing: with the automatic count, and at a fixed count while regrowing (regrowth_goes_on).
     bool automatic() const {
         return (options_.proxies == 0 && options_.tolerance == 0) || regrowth_ == Regrowth::growing;
     }
@@ -236,9 +236,10 @@ private:
     int target() const { return regrowth_ == Regrowth::growing ? 0 : options_.proxies; }
     // Whether a stop at a fixed count for `reason` first grows past the count and merges back.
     bool regrows(StopReason reason) const;
-    // At a stop for `reason`: whether the regrowth starts, or goes on from growing to merging
-    // back (then the stop waits); otherwise, once it ends, the partition it started from is
-    // restored unless it did better, and `reason` with it.
+    // At a stop for `reason`: whether a regrowth starts, or goes on from growing to merging
+    // back (the stop waits). Otherwise, if one has just ended and did no better, the
+    // partition it started from is restored, with its stop reason unless the iteration cap
+    // or a cancel cut the regrowth short.
     bool regrowth_goes_on(StopReason& reason);
     // Σ A (noise_factor · roughness)² over a region: the energy the noise explains.
     double noise_energy(int proxy) const;
