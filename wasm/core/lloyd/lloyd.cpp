@@ -339,7 +339,8 @@ bool Lloyd::regrowth_goes_on(StopReason& reason) {
         // Grown and finished as automatic; the count binds again, and the moves already
         // tried at it are not tried twice.
         regrowth_ = Regrowth::merging;
-        finishing_ = false, teleports_left_ = 0, wide_teleport_ = 0, teleport_pending_ = false;
+        finishing_ = false;
+        end_teleports();
         decide();
         return true;
     }
@@ -488,9 +489,7 @@ void Lloyd::decide() {
         // (a sheet folded along one edge at one proxy: the teleport's region took one face,
         // and no union of the two was valid, so the run ended with two regions).
         if (teleport_pending_) {
-            teleport_pending_ = wide_pending_ = false;
-            teleports_left_ = wide_teleport_ = 0;
-            misfit_teleport_ = false, misfit_teleport_tried_ = true;
+            end_teleports();
             restore(snapshot_);
             return decide();
         }
@@ -546,9 +545,7 @@ void Lloyd::decide() {
             return finish();
         }
     }
-    // A regrowth's detour is bounded: three times the count (at twice, the coarse irregular
-    // pencil's was cut short before it found its cone, 0.822).
-    if (regrowth_ == Regrowth::growing && count >= 3 * options_.proxies) {
+    if (regrowth_ == Regrowth::growing && count >= regrowth_ceiling()) {
         finishing_ = true, finish_reason_ = StopReason::fitted;
         return finish();
     }
@@ -591,6 +588,12 @@ void Lloyd::judge_teleport() {
     restore(snapshot_);
     teleports_left_ = 0;
     if (!noisy_ && !misfit_teleport_tried_) teleports_left_ = 1, misfit_teleport_ = true;
+}
+
+void Lloyd::end_teleports() {
+    teleport_pending_ = wide_pending_ = false;
+    teleports_left_ = wide_teleport_ = 0;
+    misfit_teleport_ = false, misfit_teleport_tried_ = true;
 }
 
 void Lloyd::restore(const Snapshot& snapshot) {
@@ -786,7 +789,7 @@ void Lloyd::insert_batch() {
     const int count = static_cast<int>(proxies_.size());
     int batch = std::max(1, static_cast<int>(count * options_.insertion_batch));
     if (target() > 0) batch = std::min(batch, target() - count);
-    if (regrowth_ == Regrowth::growing) batch = std::max(1, std::min(batch, 3 * options_.proxies - count));
+    if (regrowth_ == Regrowth::growing) batch = std::max(1, std::min(batch, regrowth_ceiling() - count));
     energy_before_insert_ = energy_;
     const int added = insert_where_needed(batch);
     inserted_ = added;

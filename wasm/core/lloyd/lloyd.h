@@ -214,6 +214,8 @@ private:
     // The next operation (or the stop), after Lloyd has settled.
     void decide();
     void judge_teleport();
+    // No teleport pending and none more: single, wide or to a misfit.
+    void end_teleports();
     void restore(const Snapshot& snapshot);
     void decide_at_target();
     bool decide_finish();  // automatic count: whether growth has ended (then finishes)
@@ -236,6 +238,9 @@ private:
     int target() const { return regrowth_ == Regrowth::growing ? 0 : options_.proxies; }
     // Whether a stop at a fixed count for `reason` first grows past the count and merges back.
     bool regrows(StopReason reason) const;
+    // How far a regrowth may grow: three times the count (at twice, the coarse irregular
+    // pencil's was cut short before it found its cone, 0.822).
+    int regrowth_ceiling() const { return 3 * options_.proxies; }
     // At a stop for `reason`: whether a regrowth starts, or goes on from growing to merging
     // back (the stop waits). Otherwise, if one has just ended and did no better, the
     // partition it started from is restored, with its stop reason unless the iteration cap
