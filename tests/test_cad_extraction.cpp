@@ -1039,6 +1039,30 @@ TEST(CadExtraction, SharedCadMeshesWithTheAutomaticCountHaveNoTwoPartRegion) {
     }
 }
 
+TEST(CadExtraction, WithoutTheRefitNoRegionNamesTwoPartsEither) {
+    // Without the refit a region keeps the quadric Lloyd fitted, which may lie on a second
+    // part by less than Lloyd's split threshold, or be a pair of planes whose one plane holds
+    // the faces: casting.off at 40 had two regions on two parts and three named plane pairs.
+    // Such a region is typed as the refit would type it; the others keep Lloyd's quadric.
+    const Mesh mesh = read_mesh_file(test::shared_mesh("casting.off"));
+    for (const int count : {40, 0}) {
+        SCOPED_TRACE(count);
+        Options o = counted(count);
+        o.refit = false;
+        const Result r = test::approximate(mesh, o);
+        EXPECT_EQ(two_part_regions(mesh, r), 0);
+        int kept = 0;
+        for (const ProxyResult& p : r.proxies) {
+            EXPECT_TRUE(p.type != QuadricType::intersecting_planes && p.type != QuadricType::parallel_planes &&
+                        p.type != QuadricType::empty)
+                << "region " << p.id << " is " << type_name(p.type);
+            kept += !p.special_fit;
+        }
+        // Most regions keep the quadric Lloyd fitted: the typing is no refit in disguise.
+        EXPECT_GE(kept, 0.85 * static_cast<double>(r.proxies.size()));
+    }
+}
+
 // block.off made noisy along its normals (σ `noise` of its diagonal, draws 1–3), each draw
 // run with the automatic count and passed to `check` with the share of its area that lies
 // within one crease chart of the clean export.

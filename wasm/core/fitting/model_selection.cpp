@@ -152,6 +152,10 @@ constexpr ImposedType kImposedTypes[] = {ImposedType::none, ImposedType::plane, 
 
 }  // namespace
 
+std::optional<TypedFit> general_fit(const Quadric& q, const Samples& vertices, const ClassifyOptions& options) {
+    return general_candidate(q, vertices, extent_of(vertices), options);
+}
+
 bool elementary(const TypedFit& c) { return c.special && cad_type(c.type); }
 
 const char* imposed_type_name(ImposedType type) {

@@ -77,6 +77,11 @@ ModelChoice select_model(const Samples& vertices, const Quadric& general, const 
 // of the region's surface).
 double selection_rms(const Samples& s, const Quadric& q);
 
+// A region's general quadric as select_model weighs it: typed by its affine type in the
+// frame of these vertices, with its RMS; none when no region could be that surface (empty,
+// a pair of planes, whose one plane the region would be, or two parts with vertices on both).
+std::optional<TypedFit> general_fit(const Quadric& q, const Samples& vertices, const ClassifyOptions& options = {});
+
 // Whether descend moves a fit: a general quadric of a type no CAD face has. A special fit,
 // or a general quadric typed plane, sphere, cylinder or cone (a part's surface, which the
 // selection weighed against its rivals), stays as chosen.

@@ -50,7 +50,7 @@ std::vector<OptionSpec> make_schema() {
                  [](Options& o, const json& v) { o.smoothing.lambda = v.get<double>(); },
                  [](const Options& o) { return json(o.smoothing.lambda); }});
     s.push_back({"refit", OptionKind::boolean, 0, 0, {},
-                 "choose each region's type (plane, sphere, cylinder, cone, paraboloid or general quadric) by model selection",
+                 "choose each region's type (plane, sphere, cylinder, cone, paraboloid or general quadric) by model selection (a region whose quadric is a plane pair, or has two parts it lies on, always is)",
                  [](Options& o, const json& v) { o.refit = v.get<bool>(); },
                  [](const Options& o) { return json(o.refit); }});
     s.push_back({"project", OptionKind::boolean, 0, 0, {}, "project the mesh onto the proxies",

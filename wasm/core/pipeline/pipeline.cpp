@@ -189,6 +189,7 @@ public:
     Stage id() const override { return Stage::refit; }
     double fraction() const override {
         const double count = state_.proxies.empty() ? 1 : double(state_.proxies.size());
+        if (!options_.refit) return next_ / count;
         const double seams = descending_ ? 1 : simplifier_ ? simplifier_->fraction() : 0;
         return 0.4 * (next_ / count) + 0.4 * seams + 0.2 * (descended_ / count);
     }
@@ -200,10 +201,6 @@ public:
         auto imposed = [&](int r) { return r < static_cast<int>(state_.imposed.size()) ? state_.imposed[r] : ImposedType::none; };
         if (!started_) {
             started_ = true;
-            if (!options_.refit) {
-                state_.choices.clear();
-                return false;
-            }
             if (regions_.empty()) state_.choices.clear();
             state_.choices.resize(count);
             region_faces_.assign(count, {});
@@ -211,14 +208,19 @@ public:
                 if (refitted(state_.labels[f])) region_faces_[state_.labels[f]].push_back(f);
         }
         while (next_ < count && !refitted(next_)) ++next_;
+        if (next_ < count && !options_.refit) {
+            type_without_refit(next_);
+            region_faces_[next_] = {};
+            ++next_;
+            return true;
+        }
+        if (!options_.refit) {
+            if (retyped_) finish();
+            return false;
+        }
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            Samples vertices =
-                region_samples(model_, region_faces_[next_], state_.noisy ? state_.roughness.get() : nullptr);
-            // The refit alone types by the scatter: the seam simplifier weighs types to move
-            // faces, and a facet row along a tangent seam lies within the noise of both sides.
-            if (state_.roughness)
-                vertices.scatter = region_scatter(region_faces_[next_], *state_.roughness, vertices.tolerance);
+            const Samples vertices = typing_samples(next_);
             ModelSelectionOptions selection = seams_.selection;
             selection.imposed = imposed(next_);
             try {
@@ -268,13 +270,44 @@ public:
             return true;
         }
         simplifier_.reset();
-        FaceErrors evaluator;
-        std::vector<double> errors;
-        state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
+        finish();
         return false;
     }
 
 private:
+    void finish() {
+        FaceErrors evaluator;
+        std::vector<double> errors;
+        state_.energy = evaluate_regions(model_, state_.labels, state_.proxies, errors, evaluator);
+    }
+
+    Samples typing_samples(int region) const {
+        Samples vertices = region_samples(model_, region_faces_[region], state_.noisy ? state_.roughness.get() : nullptr);
+        // The refit alone types by the scatter: the seam simplifier weighs types to move
+        // faces, and a facet row along a tangent seam lies within the noise of both sides.
+        if (state_.roughness)
+            vertices.scatter = region_scatter(region_faces_[region], *state_.roughness, vertices.tolerance);
+        return vertices;
+    }
+
+    // Without the refit a region keeps the quadric Lloyd fitted, typed by its affine type.
+    // But Lloyd lets a region lie on a second part of its quadric by less than its split
+    // threshold, and on one plane of a pair: such a quadric names no surface of the region,
+    // which is then typed as the refit would type it. So a result names one surface per
+    // region whatever the options.
+    void type_without_refit(int region) {
+        const Samples vertices = typing_samples(region);
+        Proxy& p = state_.proxies[region];
+        ModelChoice& choice = state_.choices[region];
+        if (auto general = general_fit(p.quadric, vertices, seams_.selection.classify)) {
+            choice = {*general, std::nullopt};
+            return;
+        }
+        choice = select_model(vertices, p.quadric, seams_.selection);
+        p.quadric = choice.chosen.quadric;
+        retyped_ = true;
+    }
+
     const Model& model_;
     const Options& options_;
     State& state_;
@@ -287,6 +320,7 @@ private:
     int next_ = 0;
     bool descending_ = false;
     int descended_ = 0;
+    bool retyped_ = false;
 };
 
 class ProjectStage : public PipelineStage {

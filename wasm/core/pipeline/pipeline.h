@@ -85,7 +85,7 @@ public:
     struct State {
         std::vector<int> labels, lloyd_labels;
         std::vector<Proxy> proxies;
-        std::vector<ModelChoice> choices;  // per region, unit frame (empty without refit)
+        std::vector<ModelChoice> choices;  // per region, unit frame (without the refit: the type of its own quadric)
         std::vector<char> crease;  // per dual-graph link, when the Lloyd stage used features
         // Per face, Features::roughness (the noise): the mesh's, shared by the undo states.
         std::shared_ptr<const std::vector<double>> roughness;
