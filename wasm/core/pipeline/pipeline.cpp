@@ -198,7 +198,6 @@ public:
         state_.phase = "refit";
         const int count = static_cast<int>(state_.proxies.size());
         auto refitted = [&](int r) { return regions_.empty() || regions_[r]; };
-        auto imposed = [&](int r) { return r < static_cast<int>(state_.imposed.size()) ? state_.imposed[r] : ImposedType::none; };
         if (!started_) {
             started_ = true;
             if (regions_.empty()) state_.choices.clear();
@@ -220,14 +219,7 @@ public:
         }
         if (next_ < count) {
             Proxy& p = state_.proxies[next_];
-            const Samples vertices = typing_samples(next_);
-            ModelSelectionOptions selection = seams_.selection;
-            selection.imposed = imposed(next_);
-            try {
-                state_.choices[next_] = select_model(vertices, p.quadric, selection);
-            } catch (const std::invalid_argument&) {  // the imposed type no longer fits: the data choose
-                state_.choices[next_] = select_model(vertices, p.quadric, seams_.selection);
-            }
+            state_.choices[next_] = choose(next_, typing_samples(next_));
             p.quadric = state_.choices[next_].chosen.quadric;
             region_faces_[next_] = {};
             ++next_;
@@ -303,9 +295,25 @@ private:
             choice = {*general, std::nullopt};
             return;
         }
-        choice = select_model(vertices, p.quadric, seams_.selection);
+        choice = choose(region, vertices);
         p.quadric = choice.chosen.quadric;
         retyped_ = true;
+    }
+
+    ImposedType imposed(int region) const {
+        return region < static_cast<int>(state_.imposed.size()) ? state_.imposed[region] : ImposedType::none;
+    }
+
+    // Model selection over the region's vertices, of the type an edit imposed if it still fits.
+    ModelChoice choose(int region, const Samples& vertices) const {
+        const Quadric& general = state_.proxies[region].quadric;
+        ModelSelectionOptions selection = seams_.selection;
+        selection.imposed = imposed(region);
+        try {
+            return select_model(vertices, general, selection);
+        } catch (const std::invalid_argument&) {  // the imposed type no longer fits: the data choose
+            return select_model(vertices, general, seams_.selection);
+        }
     }
 
     const Model& model_;
