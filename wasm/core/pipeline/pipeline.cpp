@@ -177,7 +177,7 @@ private:
 
 // Each region's type by model selection over its vertices (the imposed one, if any), one
 // region per step; then the tangent seams, one region per step. With `regions` (an edit's),
-// only those.
+// only those. Without the refit option, each region's own quadric typed, one per step.
 class RefitStage : public PipelineStage {
 public:
     RefitStage(const Model& model, const Options& options, State& state, std::vector<char> regions)
@@ -207,13 +207,13 @@ public:
                 if (refitted(state_.labels[f])) region_faces_[state_.labels[f]].push_back(f);
         }
         while (next_ < count && !refitted(next_)) ++next_;
-        if (next_ < count && !options_.refit) {
-            type_without_refit(next_);
-            region_faces_[next_] = {};
-            ++next_;
-            return true;
-        }
         if (!options_.refit) {
+            if (next_ < count) {
+                type_without_refit(next_);
+                region_faces_[next_] = {};
+                ++next_;
+                return true;
+            }
             if (retyped_) finish();
             return false;
         }
