@@ -1,6 +1,6 @@
 #include "cad_parts.h"
 
-#include "portable_math.h"
+#include "geometry/portable_math.h"
 
 #include "geometry/rng.h"
 

@@ -1,6 +1,6 @@
 #include "shapes.h"
 
-#include "portable_math.h"
+#include "geometry/portable_math.h"
 
 #include <cmath>
 

@@ -1,5 +1,7 @@
 #include "fitting/classify.h"
 
+#include "geometry/portable_math.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -145,7 +147,7 @@ Classification classify(const Quadric& f_unit, const Vec3& region_center, double
             out.type = nearly_equal(lambda[0], lambda[1], options.equal_eigenvalues) ? QuadricType::cone
                                                                                       : QuadricType::elliptic_cone;
             out.semi_axes = Vec3(std::sqrt(-lambda[2] / lambda[0]), std::sqrt(-lambda[2] / lambda[1]), 1.0);
-            out.half_angle = std::atan(std::sqrt(-lambda[2] / (0.5 * (lambda[0] + lambda[1]))));
+            out.half_angle = portable::atan(std::sqrt(-lambda[2] / (0.5 * (lambda[0] + lambda[1]))));
             out.nappes_apart = nappes_apart(center, Vec3::Zero(), 1);  // the local frame
             return finish(center);
         }

@@ -3,6 +3,7 @@
 #include "fitting/distance.h"
 
 #include "fitting/least_squares.h"
+#include "geometry/portable_math.h"
 
 #include <Eigen/Dense>
 
@@ -55,7 +56,7 @@ double special_distance(const Classification& shape, const Vec3& p) {
             // In the half-plane through the axis: distance to the generator on p's nappe,
             // or to the apex when p lies beyond it.
             const double h = d.dot(u), rho = (d - h * u).norm();
-            const double c = std::cos(shape.half_angle), s = std::sin(shape.half_angle);
+            const double c = portable::cos(shape.half_angle), s = portable::sin(shape.half_angle);
             const double along = std::abs(h) * c + rho * s;
             return along >= 0 ? std::abs(rho * c - std::abs(h) * s) : d.norm();
         }
@@ -74,7 +75,7 @@ Quadric special_quadric(const Classification& shape) {
         case QuadricType::sphere: A = Eigen::Matrix3d::Identity(), k = -shape.radius * shape.radius; break;
         case QuadricType::cylinder: A = P, k = -shape.radius * shape.radius; break;
         case QuadricType::cone: {
-            const double co = std::cos(shape.half_angle), s = std::sin(shape.half_angle);
+            const double co = portable::cos(shape.half_angle), s = portable::sin(shape.half_angle);
             A = co * co * P - s * s * u * u.transpose();
             break;
         }
@@ -216,7 +217,7 @@ std::optional<SpecialFit> fit_cone_geometric(const Samples& s, const Vec3& axis_
         scale);
     Vec3 a, u;
     unpack(theta, a, u);
-    const double alpha = std::atan(theta[5]);
+    const double alpha = portable::atan(theta[5]);
     if (!(alpha > 1e-4 && alpha < M_PI / 2 - 1e-4)) return std::nullopt;
     Classification shape;
     shape.type = QuadricType::cone;

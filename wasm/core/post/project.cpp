@@ -1,5 +1,7 @@
 #include "post/project.h"
 
+#include "geometry/portable_math.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -237,7 +239,7 @@ Vec3 special_foot_point(const Classification& shape, const Vec3& p) {
             Vec3 radial = d - h * u;
             const double rho = radial.norm();
             radial = rho > 0 ? Vec3(radial / rho) : Vec3(shape.rotation.col(0));
-            const Vec3 generator = (h >= 0 ? 1.0 : -1.0) * std::cos(shape.half_angle) * u + std::sin(shape.half_angle) * radial;
+            const Vec3 generator = (h >= 0 ? 1.0 : -1.0) * portable::cos(shape.half_angle) * u + portable::sin(shape.half_angle) * radial;
             const double t = std::max(0.0, d.dot(generator));
             return shape.center + t * generator;
         }

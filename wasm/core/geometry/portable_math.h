@@ -1,8 +1,9 @@
-// sin, cos and log from additions, multiplications and divisions only, so that the
-// procedural examples' vertices are the same bits in every build: the platforms' libm
-// (glibc natively, musl under Emscripten) differ in the last bit now and then, and one
-// bit moved a vertex enough to change labels (turned_part, flange). Accurate to a few
-// units in the last place over the arguments the examples use (|x| up to a few turns).
+// sin, cos, atan and log from additions, multiplications, divisions and square roots only,
+// so that what they compute is the same bits in every build: the platforms' libm (glibc
+// natively, musl under Emscripten) differ in the last bit now and then. One bit moved a
+// procedural example's vertex enough to change labels (turned_part, flange), and a cone's
+// coefficients, taken from its half-angle, differed between the builds' reports. Accurate
+// to a few units in the last place over the arguments used (|x| up to a few turns).
 #pragma once
 
 #include <cmath>
@@ -67,6 +68,20 @@ inline double cos(double x) {
         case 2: return -detail::cos_reduced(r);
         default: return detail::sin_reduced(r);
     }
+}
+
+// Arctangent: beyond 1 by π/2 − atan(1/x), beyond tan(π/12) by π/6 + atan((√3 x − 1)/(√3 + x)),
+// then its series in x² (x² ≤ 0.072: sixteen terms leave under 1e-18).
+inline double atan(double x) {
+    constexpr double kPiOver2 = 1.57079632679489661923, kPiOver6 = 0.52359877559829887308;
+    constexpr double kTanPiOver12 = 0.26794919243112270647, kSqrt3 = 1.73205080756887729353;
+    if (x < 0) return -atan(-x);
+    if (x > 1) return kPiOver2 - atan(1 / x);
+    if (x > kTanPiOver12) return kPiOver6 + atan((kSqrt3 * x - 1) / (kSqrt3 + x));
+    const double x2 = x * x;
+    double p = 0;
+    for (int k = 16; k >= 0; --k) p = p * x2 + (k % 2 ? -1.0 : 1.0) / (2 * k + 1);
+    return x * p;
 }
 
 // Natural logarithm of x > 0: x = m 2^e with m in [√½, √2], log m = 2 atanh((m-1)/(m+1)).
