@@ -10,6 +10,10 @@
 
 namespace vqsa {
 
+double crease_cosine(double crease_angle, double fraction) {
+    return portable::cos(fraction * crease_angle * M_PI / 180);
+}
+
 namespace {
 
 // +1 or -1 per face so that neighbours traverse their shared edge in opposite
@@ -87,7 +91,7 @@ NoiseLevels noise_levels(const Model& model, const std::vector<Vec3>& normal, do
             neighbour_count[t[i]] += 2;
         }
     }
-    const double smooth_cos = portable::cos(crease_angle * M_PI / 180);
+    const double smooth_cos = crease_cosine(crease_angle);
     std::vector<Vec3> lowest(model.points.size(), Vec3::Zero());  // a face normal per vertex, to compare with
     std::vector<char> smooth(model.points.size(), 1);
     for (int f = 0; f < n; ++f)
@@ -196,7 +200,7 @@ std::vector<Vec3> guidance_normals(const DualGraph& g, const std::vector<Vec3>& 
 // by the crease angle.
 std::vector<char> find_creases(const DualGraph& g, const std::vector<Vec3>& normal, double crease_angle) {
     const int n = static_cast<int>(normal.size());
-    const double cos_limit = portable::cos(crease_angle * M_PI / 180);
+    const double cos_limit = crease_cosine(crease_angle);
     std::vector<char> crease(g.neighbor.size(), 0);
     for (int f = 0; f < n; ++f)
         for (int e = g.begin(f); e < g.end(f); ++e)

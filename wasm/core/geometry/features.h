@@ -8,6 +8,10 @@
 
 namespace vqsa {
 
+// The cosine of `fraction` of a crease angle in degrees, the same bits in every build
+// (portable_math): the threshold dot products of normals are compared with.
+double crease_cosine(double crease_angle, double fraction = 1);
+
 struct FeatureOptions {
     // A dual edge is a crease when the (filtered) normals of its faces differ by more
     // than this, in degrees; 180 finds none. Above the facet angle of most CAD

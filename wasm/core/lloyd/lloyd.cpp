@@ -4,7 +4,6 @@
 #include "fitting/model_selection.h"
 #include "fitting/samples.h"
 
-#include "geometry/portable_math.h"
 #include "geometry/rng.h"
 
 #include <algorithm>
@@ -939,7 +938,7 @@ std::vector<int> Lloyd::misfit_charts() const {
     // turns. A surface that turns through a crease (by half its angle and more, within an
     // edge) is fitting two faces, however small its error.
     const DualGraph& g = model_.graph;
-    const double cos_half = portable::cos(0.5 * options_.features.crease_angle * M_PI / 180);
+    const double cos_half = crease_cosine(options_.features.crease_angle, 0.5);
     // A quadric that turns over several faces instead rounds the crease off, and misses the
     // crease's vertices (crease_vertices: per chart, its region and vertex on each side).
     std::vector<int> crossings(features_.chart_count, 0), bends(features_.chart_count, 0);
@@ -1114,7 +1113,7 @@ int Lloyd::side_of(const Quadric& q, int face, const Classification& c, double m
         // A plane region whose faces face both ways is a sheet seen from both sides: the
         // two faces of a plate thinner than the fit can resolve.
         const double side = features_.normals[face].dot(q.b().normalized());
-        if (std::abs(side) < portable::cos(options_.features.crease_angle * M_PI / 180)) return 0;
+        if (std::abs(side) < crease_cosine(options_.features.crease_angle)) return 0;
         return side > 0 ? 1 : -1;
     }
     // Faces within the margin of where the parts separate are on neither.
@@ -1238,7 +1237,7 @@ Lloyd::Parts Lloyd::plane_pair(const std::vector<int>& faces, double error) cons
     // noise: 17 to 29). A spread is measured on min_quadric_faces faces or more: a handful
     // of a scan's faces bunch by chance (rocker_arm's last regions: groups of 2 to 5 faces
     // 34° to 40° apart, 7 to 18 spreads).
-    const double cos_crease = portable::cos(options_.features.crease_angle * M_PI / 180);
+    const double cos_crease = crease_cosine(options_.features.crease_angle);
     if (c[0].dot(c[1]) > cos_crease) {
         double spread[2] = {0, 0}, area[2] = {0, 0};
         std::vector<int> group_faces[2];
@@ -1848,7 +1847,7 @@ bool Lloyd::faces_both_ways(const Quadric& q, const std::vector<int>& a, const s
 }
 
 bool Lloyd::off_normal(const Quadric& q, int face) const {
-    const double cos_limit = portable::cos(options_.features.crease_angle * M_PI / 180);
+    const double cos_limit = crease_cosine(options_.features.crease_angle);
     const Vec3 g = q.gradient(model_.barycentres[face]);
     return g.norm() > 0 && std::abs(features_.normals[face].dot(g)) < cos_limit * g.norm();
 }
@@ -1865,7 +1864,7 @@ bool Lloyd::strays(const Quadric& q, const std::vector<int>& region) const {
 bool Lloyd::joins_faces_across_creases(const Quadric& q, const std::vector<int>& a, const std::vector<int>& b,
                                        bool inside) const {
     const DualGraph& g = model_.graph;
-    const double cos_half = portable::cos(0.5 * options_.features.crease_angle * M_PI / 180);
+    const double cos_half = crease_cosine(options_.features.crease_angle, 0.5);
     const int region_a = labels_[a.front()], region_b = labels_[b.front()];
     int crossings = 0, bends = 0;
     std::vector<std::pair<int, int>> crease_vertices;  // of every crease inside the union
