@@ -261,6 +261,30 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     for (TypedFit& c : candidates) c.bic = criterion(s, c.rms, c.parameters, floor2);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
     if (!s.edge_midpoints.empty() && options.imposed == ImposedType::none) {
+        // Nor do the vertices say where the surface runs between them: the two rows of
+        // vertices of a flat strip one facet wide lie closer, under noise, to a paraboloid
+        // curving sharply away from the strip than to their plane, and a long pin's two
+        // end circles lie exactly on the sphere centred half way along it, which passes
+        // the middle of every facet by half the pin's length. A candidate that strays from
+        // the edges' midpoints by an order of magnitude more than another, beyond the
+        // tessellation's own deviation, is not the mesh's surface, however closely it
+        // holds the vertices. The midpoints carry the noise too, so the least stray is
+        // itself mostly noise and ten times it lets a candidate bend away by seven σ (a
+        // strip's cylinder, 12 σ off its midpoints, passed): on a noisy mesh a candidate
+        // may also stray beyond the least by no more than the cap past which a point
+        // tells of something else than the region's surface.
+        double allowed = floor2;
+        for (double t : s.midpoint_tolerances) allowed += t * t / s.midpoint_tolerances.size();
+        std::vector<double> strays;
+        for (const TypedFit& c : candidates) strays.push_back(midpoint_mean_square(s, c.quadric, false));
+        const double least = *std::min_element(strays.begin(), strays.end());
+        const double noise_bound = s.noise > 0 ? least + allowed + (kNoiseCap * s.noise) * (kNoiseCap * s.noise)
+                                               : std::numeric_limits<double>::infinity();
+        std::vector<TypedFit> kept;
+        for (std::size_t i = 0; i < candidates.size(); ++i)
+            if (strays[i] <= kRunAway * kRunAway * (least + allowed) && strays[i] <= noise_bound)
+                kept.push_back(candidates[i]);
+        if (!kept.empty()) candidates.swap(kept);
         if (candidates.front().rms * candidates.front().rms <= exact2) {
             // Where several types hold the vertices to rounding, the vertices cannot tell
             // them apart (a band one facet tall holds two circles: on a cylinder, a sphere
@@ -277,29 +301,6 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
                 if (score < best_score) best = c, best_score = score;
             }
             std::rotate(candidates.begin(), best, best + 1);
-        } else {
-            // Nor, under noise, do the vertices say where the surface runs between them:
-            // the two rows of vertices of a flat strip one facet wide lie closer to a
-            // paraboloid curving sharply away from the strip than to their plane. A
-            // candidate that strays from the edges' midpoints by an order of magnitude
-            // more than another, beyond the tessellation's own deviation, is not the
-            // mesh's surface. The midpoints carry the noise too, so the least stray is
-            // itself mostly noise and ten times it lets a candidate bend away by seven σ
-            // (a strip's cylinder, 12 σ off its midpoints, passed): on a noisy mesh a
-            // candidate may also stray beyond the least by no more than the cap past
-            // which a point tells of something else than the region's surface.
-            double allowed = floor2;
-            for (double t : s.midpoint_tolerances) allowed += t * t / s.midpoint_tolerances.size();
-            std::vector<double> strays;
-            for (const TypedFit& c : candidates) strays.push_back(midpoint_mean_square(s, c.quadric, false));
-            const double least = *std::min_element(strays.begin(), strays.end());
-            const double noise_bound = s.noise > 0 ? least + allowed + (kNoiseCap * s.noise) * (kNoiseCap * s.noise)
-                                                   : std::numeric_limits<double>::infinity();
-            std::vector<TypedFit> kept;
-            for (std::size_t i = 0; i < candidates.size(); ++i)
-                if (strays[i] <= kRunAway * kRunAway * (least + allowed) && strays[i] <= noise_bound)
-                    kept.push_back(candidates[i]);
-            if (!kept.empty()) candidates.swap(kept);
         }
     }
     // Where the vertices stray from every candidate (noise, a remeshing), the scatter none

@@ -64,10 +64,11 @@ struct ModelSelectionOptions {
 // minimises n ln(MSE + floor² + stored² + tolerance²) + k ln(n), n the number of vertices, the
 // tolerance the samples' own (region_samples: the tessellation's chordal deviation, below
 // which a closer fit is no evidence). The edges' midpoints (Samples::edge_midpoints) say
-// where the surface runs between the vertices: among candidates exact to the floor, they
-// break the tie; otherwise a candidate ten times farther from them than another, beyond
-// the tessellation's deviation, is dropped (a strip's two rows of vertices lie on many
-// quadrics; docs/METHOD.md §6). With a type imposed, the best candidate of that type
+// where the surface runs between the vertices: a candidate ten times farther from them
+// than another, beyond the tessellation's deviation, is dropped, however closely it holds
+// the vertices (a strip's two rows of vertices, a pin's two end circles, lie on many
+// quadrics); among the candidates left that are exact to the floor, they break the tie
+// (docs/METHOD.md §6). With a type imposed, the best candidate of that type
 // is chosen; std::invalid_argument when none could be fitted (a sphere through a flat
 // region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
