@@ -260,6 +260,9 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     const double floor2 = exact2 + s.tolerance * s.tolerance;
     for (TypedFit& c : candidates) c.bic = criterion(s, c.rms, c.parameters, floor2);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
+    // Candidates the edges' midpoints rule out: no choice, but still the report's runner-up
+    // when no candidate left is of another type (how clear the choice was).
+    std::vector<TypedFit> dropped;
     if (!s.edge_midpoints.empty() && options.imposed == ImposedType::none) {
         // Nor do the vertices say where the surface runs between them: the two rows of
         // vertices of a flat strip one facet wide lie closer, under noise, to a paraboloid
@@ -282,8 +285,8 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
                                                : std::numeric_limits<double>::infinity();
         std::vector<TypedFit> kept;
         for (std::size_t i = 0; i < candidates.size(); ++i)
-            if (strays[i] <= kRunAway * kRunAway * (least + allowed) && strays[i] <= noise_bound)
-                kept.push_back(candidates[i]);
+            (strays[i] <= kRunAway * kRunAway * (least + allowed) && strays[i] <= noise_bound ? kept : dropped)
+                .push_back(candidates[i]);
         if (!kept.empty()) candidates.swap(kept);
         if (candidates.front().rms * candidates.front().rms <= exact2) {
             // Where several types hold the vertices to rounding, the vertices cannot tell
@@ -318,6 +321,8 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     ModelChoice choice{candidates.front(), std::nullopt};
     for (std::size_t i = 1; i < candidates.size() && !choice.runner_up; ++i)
         if (candidates[i].type != choice.chosen.type) choice.runner_up = candidates[i];
+    for (std::size_t i = 0; i < dropped.size() && !choice.runner_up; ++i)
+        if (dropped[i].type != choice.chosen.type) choice.runner_up = dropped[i];
     return choice;
 }
 

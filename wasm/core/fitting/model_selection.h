@@ -30,7 +30,9 @@ bool elementary(const TypedFit& c);
 
 struct ModelChoice {
     TypedFit chosen;
-    std::optional<TypedFit> runner_up;  // the best candidate of another type
+    // The best candidate of another type: among those the edges' midpoints left, else
+    // among those they ruled out (how clear the choice was, for the report).
+    std::optional<TypedFit> runner_up;
 };
 
 // A type imposed on a region by hand (an edit): one of the geometric fits, or the general
