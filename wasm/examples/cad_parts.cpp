@@ -1259,6 +1259,49 @@ Part rolled_sheet(const PartOptions& o) {
     return b.finish("rolled_sheet");
 }
 
+// A plate whose four upright edges are rounded, meshed as CAD exports often mesh a pocket
+// or a boss (trimesh's featuretype.STL, octagonal_pocket.stl): each side one quad, two long
+// triangles, each corner a quarter cylinder of 11 facets, top and bottom fans; beside it,
+// apart, a slab seven times its size (so the plate is as small against the whole as a
+// pocket is in a part), its sides one quad each too; 16 faces.
+Part rounded_plate(const PartOptions& o) {
+    PartBuilder b(o);
+    // A prism between z0 and z1 over a closed counter-clockwise outline, its quad j (from
+    // point j to the next) on surface label[j].
+    auto prism = [&](const std::vector<Vec3>& outline, const std::vector<int>& label, double z0, double z1,
+                     const Vec3& inside) {
+        std::vector<Vec3> low, high;
+        for (const Vec3& p : outline) low.emplace_back(p.x(), p.y(), z0), high.emplace_back(p.x(), p.y(), z1);
+        b.band(low, high, b.count(1), true, [&](int j) { return label[j]; });
+        b.fill(low, Vec3(inside.x(), inside.y(), z0), b.count(2), b.surface(plane({0, 0, z0}, -Vec3::UnitZ())));
+        b.fill(high, Vec3(inside.x(), inside.y(), z1), b.count(2), b.surface(plane({0, 0, z1}, Vec3::UnitZ())));
+    };
+    auto direction = [](double angle) { return Vec3(portable::cos(angle), portable::sin(angle), 0); };
+    const double W = 1.0, D = 0.6, T = 0.2, r = 0.1;
+    const Vec3 centres[4] = {{W - r, r, 0}, {W - r, D - r, 0}, {r, D - r, 0}, {r, r, 0}};
+    // Corner k turns from −90° + 90°k to 90°k, and the side after it faces 90°k.
+    const int facets = b.count(11);
+    std::vector<Vec3> outline;
+    std::vector<int> label;
+    for (int k = 0; k < 4; ++k) {
+        const int corner = b.surface(cylinder(centres[k], Vec3::UnitZ(), r));
+        const int side = b.surface(plane(centres[k] + r * direction(kPi / 2 * k), direction(kPi / 2 * k)));
+        for (int i = 0; i < facets; ++i) {
+            outline.push_back(centres[k] + r * direction(kPi / 2 * (k - 1) + kPi / 2 * i / facets));
+            label.push_back(corner);
+        }
+        outline.push_back(centres[k] + r * direction(kPi / 2 * k));
+        label.push_back(side);
+    }
+    prism(outline, label, 0, T, {W / 2, D / 2, 0});
+    const double x0 = -1, y0 = -6, X = 7, Y = 5;
+    const std::vector<Vec3> slab{{x0, y0, 0}, {x0 + X, y0, 0}, {x0 + X, y0 + Y, 0}, {x0, y0 + Y, 0}};
+    std::vector<int> sides;
+    for (int k = 0; k < 4; ++k) sides.push_back(b.surface(plane(slab[k], direction(kPi / 2 * (k - 1)))));
+    prism(slab, sides, 0, 0.5, {x0 + X / 2, y0 + Y / 2, 0});
+    return b.finish("rounded_plate");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -1282,7 +1325,8 @@ std::vector<std::string> part_names() {
     names.push_back("bowl");
     names.push_back("dish");
     names.push_back("rolled_sheet");
-    names.push_back("countersunk_plate");  // last: a part's seed follows its place in this list
+    names.push_back("countersunk_plate");
+    names.push_back("rounded_plate");  // last: a part's seed follows its place in this list
     return names;
 }
 
@@ -1314,6 +1358,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "bowl") return bowl(options);
     if (name == "dish") return dish(options);
     if (name == "rolled_sheet") return rolled_sheet(options);
+    if (name == "rounded_plate") return rounded_plate(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 

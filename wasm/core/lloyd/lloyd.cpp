@@ -1927,16 +1927,30 @@ bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost
     // a pair of planes exactly, and the three faces a part needs otherwise (against noise)
     // let them merge.
     const RegionFaces faces = faces_by_region();
+    // On an exact export, a handful most of whose area is two faces or more in one plane is
+    // that plane's, whatever else it holds: a wall of two long triangles whose region took
+    // the first facet column of the fillet beside it (trimesh's featuretype.STL) is no
+    // longer exact as a whole, and merged at least cost it went into the fillet, wall and
+    // fillet and the next wall ending one hyperbolic cylinder.
+    std::vector<char> holds_plane(proxies_.size(), 0);
+    if (exact_ && options_.proxies == 0) {
+        std::vector<int> piece(model_.face_count(), -1);
+        for (int r = 0; r < static_cast<int>(proxies_.size()); ++r)
+            if (proxies_[r].faces > 2 && proxies_[r].faces < options_.min_quadric_faces) {
+                const std::size_t off = off_plane_faces(faces[r], piece).size();
+                holds_plane[r] = off > 0 && faces[r].size() - off >= 2;
+            }
+    }
     auto handful = [&](int r, int into) {
         const Proxy& p = proxies_[r];
         if (p.faces >= options_.min_quadric_faces) return false;
-        return !(p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area)) ||
+        return !(holds_plane[r] || (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area))) ||
                vertices_on(faces[r], into, faces);
     };
     auto in_one_plane = [&](int r) {
         const Proxy& p = proxies_[r];
-        return p.faces >= 2 && p.faces < options_.min_quadric_faces && p.fitted &&
-               p.fit_error <= kStoredPrecision * kStoredPrecision;
+        return holds_plane[r] || (p.faces >= 2 && p.faces < options_.min_quadric_faces && p.fitted &&
+                                  p.fit_error <= kStoredPrecision * kStoredPrecision);
     };
     const std::function<bool(int, int)> was_rejected = rejected(faces);
     return merge_least_cost(
