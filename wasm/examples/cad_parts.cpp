@@ -1266,15 +1266,13 @@ Part rolled_sheet(const PartOptions& o) {
 // pocket is in a part), its sides one quad each too; 16 faces.
 Part rounded_plate(const PartOptions& o) {
     PartBuilder b(o);
-    // A prism between z0 and z1 over a closed counter-clockwise outline, its quad j (from
-    // point j to the next) on surface label[j].
-    auto prism = [&](const std::vector<Vec3>& outline, const std::vector<int>& label, double z0, double z1,
-                     const Vec3& inside) {
-        std::vector<Vec3> low, high;
-        for (const Vec3& p : outline) low.emplace_back(p.x(), p.y(), z0), high.emplace_back(p.x(), p.y(), z1);
-        b.band(low, high, b.count(1), true, [&](int j) { return label[j]; });
-        b.fill(low, Vec3(inside.x(), inside.y(), z0), b.count(2), b.surface(plane({0, 0, z0}, -Vec3::UnitZ())));
-        b.fill(high, Vec3(inside.x(), inside.y(), z1), b.count(2), b.surface(plane({0, 0, z1}, Vec3::UnitZ())));
+    // A prism from z = 0 to `height` over a closed counter-clockwise outline at z = 0, its
+    // quad j (from point j to the next) on surface label[j].
+    auto prism = [&](const std::vector<Vec3>& outline, const std::vector<int>& label, double height, const Vec3& inside) {
+        const std::vector<Vec3> top = at_height(outline, height);
+        b.band(outline, top, b.count(1), true, [&](int j) { return label[j]; });
+        b.fill(outline, inside, b.count(2), b.surface(plane({0, 0, 0}, -Vec3::UnitZ())));
+        b.fill(top, inside + Vec3(0, 0, height), b.count(2), b.surface(plane({0, 0, height}, Vec3::UnitZ())));
     };
     auto direction = [](double angle) { return Vec3(portable::cos(angle), portable::sin(angle), 0); };
     const double W = 1.0, D = 0.6, T = 0.2, r = 0.1;
@@ -1293,12 +1291,12 @@ Part rounded_plate(const PartOptions& o) {
         outline.push_back(centres[k] + r * direction(kPi / 2 * k));
         label.push_back(side);
     }
-    prism(outline, label, 0, T, {W / 2, D / 2, 0});
+    prism(outline, label, T, {W / 2, D / 2, 0});
     const double x0 = -1, y0 = -6, X = 7, Y = 5;
     const std::vector<Vec3> slab{{x0, y0, 0}, {x0 + X, y0, 0}, {x0 + X, y0 + Y, 0}, {x0, y0 + Y, 0}};
     std::vector<int> sides;
     for (int k = 0; k < 4; ++k) sides.push_back(b.surface(plane(slab[k], direction(kPi / 2 * (k - 1)))));
-    prism(slab, sides, 0, 0.5, {x0 + X / 2, y0 + Y / 2, 0});
+    prism(slab, sides, 0.5, {x0 + X / 2, y0 + Y / 2, 0});
     return b.finish("rounded_plate");
 }
 
