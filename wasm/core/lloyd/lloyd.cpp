@@ -1077,6 +1077,11 @@ int Lloyd::insert_farthest(int count) {
     std::sort(order.begin(), order.end(), [&](int a, int b) {
         return excess[a] != excess[b] ? excess[a] > excess[b] : a < b;
     });
+    // The charts and clusters of this batch may have seeded a face of these regions already:
+    // a second seed on it would leave one of the two proxies without a region.
+    std::vector<char> seeded(model_.face_count(), 0);
+    for (const Proxy& p : proxies_)
+        if (p.seed >= 0) seeded[p.seed] = 1;
     int added = 0;
     for (int region : order) {
         if (added == count) break;
@@ -1095,14 +1100,16 @@ int Lloyd::insert_farthest(int count) {
         const DualGraph& g = model_.graph;
         for (int f = 0; f < model_.face_count(); ++f) {
             const int rank = seedable_[f];
-            if (labels_[f] != region || f == proxies_[region].seed || rank < worst_rank) continue;
+            if (labels_[f] != region || seeded[f] || rank < worst_rank) continue;
             double e = errors_[f];
             if (!(lone_faces_tell && features_.roughness[f] <= kStoredPrecision))
                 for (int k = g.begin(f); k < g.end(f); ++k)
                     if (labels_[g.neighbor[k]] == region) e += errors_[g.neighbor[k]];
             if (rank > worst_rank || e > worst_error) worst_error = e, worst = f, worst_rank = rank;
         }
+        if (worst < 0) continue;
         add_proxy(worst);
+        seeded[worst] = 1;
         ++added;
     }
     return added;
