@@ -1392,10 +1392,12 @@ TEST(CadExtraction, AutomaticallyAnExactExportsHandfulsMergeSeveralAtATime) {
     // Regions of a handful of faces (fewer than min_quadric_faces) go to the neighbour they
     // cost least, once no two regions lie on one surface. One per Lloyd stage, a gear set of
     // 112 parts (43K faces) grown to 1 967 regions ran into the iteration cap with 730 of
-    // them merged; on an exact tessellation several now merge together. casting.off ends
-    // with three, one stage each before. A stage's merges are read off the partition: a
-    // region made of two regions of the step before.
-    const Model model = make_model(read_mesh_file(test::shared_mesh("casting.off")));
+    // them merged; on an exact tessellation several now merge together. The plate assembly
+    // (exact, in its canonical pose) merges ten in one stage. A stage's merges are read off
+    // the partition: a region made of two regions of the step before. (casting.off was the
+    // case until 2026-11-29, three at once; since two faces in one plane are an exact plane
+    // whatever the roughness beside them, fewer of its regions are handfuls, two at once.)
+    const Model model = make_model(make_part("plate_assembly", PartOptions{}).mesh);
     Lloyd lloyd(model, LloydOptions{});
     ASSERT_TRUE(lloyd.features().exact);
     const int handful = LloydOptions{}.min_quadric_faces;

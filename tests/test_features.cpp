@@ -57,3 +57,27 @@ TEST(Features, RoughnessDoesNotDependOnThePose) {
         }
     }
 }
+
+TEST(Features, ArcFacetsAreTheFacetsOfCurvedSurfacesNotFlatFacesBetweenCreases) {
+    // A coarse arc's facets are exact planes, each off its arc by its sag; a face of a few
+    // triangles between creases is an exact plane and no facet (Lloyd::merge_handful tells
+    // the two apart by this flag). A tube's walls, a hex nut's bore and countersinks are
+    // facets; their flat faces, and every face of a box whose edges are 45° chamfers, are not.
+    for (const std::string name : {"tube", "hex_nut", "chamfered_box"})
+        for (double detail : {1.0, 0.4}) {
+            SCOPED_TRACE(name + ", detail " + std::to_string(detail));
+            PartOptions options;
+            options.detail = detail, options.random_pose = true;
+            const Part part = make_part(name, options);
+            const Features features = detect_features(make_model(part.mesh));
+            int flat = 0, flagged_flat = 0, curved = 0, flagged_curved = 0;
+            for (std::size_t t = 0; t < part.face.size(); ++t) {
+                const bool plane = part.surfaces[part.face[t]].type == QuadricType::plane;
+                (plane ? flat : curved) += 1;
+                (plane ? flagged_flat : flagged_curved) += features.arc_facet[t];
+            }
+            EXPECT_GT(flat, 0);
+            EXPECT_EQ(flagged_flat, 0);
+            EXPECT_EQ(flagged_curved, curved);
+        }
+}

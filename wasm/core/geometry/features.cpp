@@ -612,6 +612,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // its own width, which explained a region of the face and half the roll.
     constexpr double kSagittaRms = 1.0;
     out.roughness.resize(n);
+    out.arc_facet.resize(n);
     for (int f = 0; f < n; ++f) {
         double sagitta = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
@@ -619,6 +620,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
             const double w = flat[f] && width[f] > 4 * width[g.neighbor[e]] ? width[g.neighbor[e]] : width[f];
             sagitta = std::max(sagitta, w * angle[e] / 8);
         }
+        out.arc_facet[f] = sagitta > kStoredPrecision;
         out.roughness[f] = std::hypot(per_chart[out.chart[f]], kSagittaRms * sagitta);
     }
     return out;

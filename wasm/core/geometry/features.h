@@ -32,6 +32,9 @@ struct Features {
     // Per face: the RMS distance a locally exact surface would leave on it (the noise),
     // estimated over its chart from local quadric fits at its vertices; unit frame.
     std::vector<double> roughness;
+    // Per face: off a smooth surface by a coarse arc's sag beyond the stored precision (one
+    // of its facets, or a flat face beside one), its noise or not.
+    std::vector<char> arc_facet;
     // Whether the mesh is an exact tessellation: half its faces or more lie in one plane
     // with a neighbour to the stored precision, as no noise or remeshing leaves them.
     bool exact = false;

@@ -1917,32 +1917,29 @@ bool Lloyd::vertices_on(const std::vector<int>& region, int other, const RegionF
 }
 
 bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost, int limit) {
-    // A handful of faces is too few to tell a quadric, but an exact plane is told
-    // (exactly_planar): it joins a neighbour only as a piece of its surface, a facet of a
-    // coarse cylinder whose vertices are on it. Merged at least cost instead, a 12-triangle
-    // box became one cylinder, and a chamfered box of 44 triangles (its chamfers bend by
-    // 45°, less than the crease angle; each corner one triangle) one sphere.
-    // Two faces or more in one plane as closely as a file stores them are exact data
-    // whatever the roughness beside them says (a coarse tessellation's sag counts as
-    // roughness, and a flat face beside a bend gets the bend's): they join a neighbour only
-    // if the union stays within the noise of the two, as a facet of a coarse cylinder does
-    // with the facets beside it, or as a piece of the neighbour's surface (vertices_on). A
-    // face of two long triangles rolled at its edge into a half cylinder (an ABC sheet-metal
-    // hinge) bent the roll's quadric 20 times beyond that noise, and the union was typed a
-    // cylinder of three times the roll's radius. Nor do they join a union that puts faces
-    // on a second part, however few: two triangles of a sheet's face and its end face hold
-    // a pair of planes exactly, and the three faces a part needs otherwise (against noise)
-    // let them merge.
+    // A handful of faces is too few to tell a quadric, but an exact plane is told (two faces
+    // or more in one plane as closely as a file stores them, which no noise leaves; see
+    // told_plane): it joins a neighbour only as a piece of its surface, a facet of a coarse
+    // cylinder whose vertices are on it (vertices_on), or if the union stays within the
+    // noise of the two, as such a facet does with the facets beside it. Merged at least cost
+    // instead, a 12-triangle box became one cylinder, and a chamfered box of 44 triangles
+    // (its chamfers bend by 45°, less than the crease angle; each corner one triangle) one
+    // sphere. A face of two long triangles rolled at its edge into a half cylinder (an ABC
+    // sheet-metal hinge) bent the roll's quadric 20 times beyond that noise, and the union
+    // was typed a cylinder of three times the roll's radius. Nor do exact planes join a union
+    // that puts faces on a second part, however few: two triangles of a sheet's face and its
+    // end face hold a pair of planes exactly, and the three faces a part needs otherwise
+    // (against noise) let them merge.
     const RegionFaces faces = faces_by_region();
-    // On an exact export, a handful most of whose area is two faces or more in one plane is
-    // that plane, whatever else it holds. A wall of two long triangles whose region took the
-    // first facet column of the fillet beside it (trimesh's featuretype.STL) is no longer
-    // exact as a whole; merged at least cost, it went into the fillet, and so did the next
-    // wall, all three one hyperbolic cylinder. Only with the automatic count, which promises
-    // one region per surface: at a count below the part's surfaces merges trade errors, and
-    // keeping such walls whole cost octagonal_pocket.stl at 40 proxies 3.6 times its RMS.
+    // A handful most of whose area is two faces or more in one plane is that plane, whatever
+    // else it holds (evidence of its own, on any mesh). A wall of two long triangles whose region took the first facet column
+    // of the fillet beside it (trimesh's featuretype.STL) is no longer exact as a whole;
+    // merged at least cost, it went into the fillet, and so did the next wall, all three one
+    // hyperbolic cylinder. Only with the automatic count, which promises one region per
+    // surface: at a count below the part's surfaces merges trade errors, and keeping such
+    // walls whole cost octagonal_pocket.stl at 40 proxies 3.6 times its RMS.
     std::vector<char> holds_plane(proxies_.size(), 0);
-    if (exact_ && options_.proxies == 0) {
+    if (options_.proxies == 0) {
         std::vector<int> piece(model_.face_count(), -1);
         for (int r = 0; r < static_cast<int>(proxies_.size()); ++r)
             if (proxies_[r].faces > 2 && proxies_[r].faces < options_.min_quadric_faces) {
@@ -1950,16 +1947,29 @@ bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost
                 holds_plane[r] = off > 0 && faces[r].size() - off >= 2;
             }
     }
-    auto handful = [&](int r, int into) {
-        const Proxy& p = proxies_[r];
-        if (p.faces >= options_.min_quadric_faces) return false;
-        return !(holds_plane[r] || (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area))) ||
-               vertices_on(faces[r], into, faces);
-    };
     auto in_one_plane = [&](int r) {
         const Proxy& p = proxies_[r];
         return holds_plane[r] || (p.faces >= 2 && p.faces < options_.min_quadric_faces && p.fitted &&
                                   p.fit_error <= kStoredPrecision * kStoredPrecision);
+    };
+    // A coarse arc's facets are exact planes too, each off the arc by its sag, and no faces of
+    // their own: there the roughness tells. Elsewhere, with the automatic count, an exact
+    // plane is told whatever roughness its chart took from the rest of the mesh (at a count
+    // below the part's surfaces merges trade errors: see holds_plane). Until 2026-11-29 the
+    // roughness had to be within the stored precision everywhere. 3D printer parts
+    // (prusa3d's Original-Prusa-i3) have faces of a few triangles in charts too small for a
+    // noise of their own and not exact (a coarse rounded edge of single triangles beside
+    // them), which took the whole mesh's, 0.2 % of its size, read off its coarse cylinders
+    // and cones: every such face merged at least cost, across the part's creases (a region
+    // over a plate's bottom, its chamfers and a side, 5 % of the size off its quadric).
+    auto told_plane = [&](int r) {
+        const Proxy& p = proxies_[r];
+        if (holds_plane[r] || (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area))) return true;
+        return options_.proxies == 0 && in_one_plane(r) &&
+               std::none_of(faces[r].begin(), faces[r].end(), [&](int f) { return features_.arc_facet[f]; });
+    };
+    auto handful = [&](int r, int into) {
+        return proxies_[r].faces < options_.min_quadric_faces && (!told_plane(r) || vertices_on(faces[r], into, faces));
     };
     const std::function<bool(int, int)> was_rejected = rejected(faces);
     return merge_least_cost(
