@@ -1932,12 +1932,13 @@ bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost
     // (against noise) let them merge.
     const RegionFaces faces = faces_by_region();
     // A handful most of whose area is two faces or more in one plane is that plane, whatever
-    // else it holds (evidence of its own, on any mesh). A wall of two long triangles whose region took the first facet column
-    // of the fillet beside it (trimesh's featuretype.STL) is no longer exact as a whole;
-    // merged at least cost, it went into the fillet, and so did the next wall, all three one
-    // hyperbolic cylinder. Only with the automatic count, which promises one region per
-    // surface: at a count below the part's surfaces merges trade errors, and keeping such
-    // walls whole cost octagonal_pocket.stl at 40 proxies 3.6 times its RMS.
+    // else it holds (evidence of its own, on any mesh). A wall of two long triangles whose
+    // region took the first facet column of the fillet beside it (trimesh's featuretype.STL)
+    // is no longer exact as a whole; merged at least cost, it went into the fillet, and so
+    // did the next wall, all three one hyperbolic cylinder. Only with the automatic count,
+    // which promises one region per surface: at a count below the part's surfaces merges
+    // trade errors, and keeping such walls whole cost octagonal_pocket.stl at 40 proxies 3.6
+    // times its RMS.
     std::vector<char> holds_plane(proxies_.size(), 0);
     if (options_.proxies == 0) {
         std::vector<int> piece(model_.face_count(), -1);
