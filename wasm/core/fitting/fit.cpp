@@ -194,30 +194,28 @@ Fit fit_taubin_through(const Moments& points, const Moments& faces, double on) {
     Eigen::MatrixXd through(10, count);
     for (int j = 0; j < count; ++j) through.col(j) = taubin.coefficients(j);
     // Among them, Taubin's fit to the faces.
-    Eigen::MatrixXd A = through.transpose() * Mf * through, B = through.transpose() * Nf * through;
-    A = 0.5 * (A + A.transpose()).eval();
-    B = 0.5 * (B + B.transpose()).eval();
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> faces_solver(A, B);
-    if (faces_solver.info() != Eigen::Success) {
-        // A combination of the quadrics through the points may have no gradient on the faces
-        // (B singular: a run of exact pieces of a printed part). It has no distance to them to
-        // rank; the fit is sought among the others, in B's range.
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gradient(B);
-        const Eigen::VectorXd& scale = gradient.eigenvalues();
-        std::vector<int> kept;
-        for (int j = 0; j < count; ++j)
-            if (scale[j] > 1e-12 * scale[count - 1]) kept.push_back(j);
-        if (kept.empty()) return {Quadric{}, kNone, kNone};
-        Eigen::MatrixXd range(count, static_cast<int>(kept.size()));
-        for (std::size_t j = 0; j < kept.size(); ++j)
-            range.col(static_cast<int>(j)) = gradient.eigenvectors().col(kept[j]) / std::sqrt(scale[kept[j]]);
-        through = (through * range).eval();
-        count = static_cast<int>(kept.size());
-        A = through.transpose() * Mf * through, B = through.transpose() * Nf * through;
-        A = 0.5 * (A + A.transpose()).eval();
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> faces_solver;
+    Eigen::MatrixXd B;  // the gradient form over the faces
+    auto fit_faces = [&] {
+        const Eigen::MatrixXd A = through.transpose() * Mf * through;
+        B = through.transpose() * Nf * through;
         B = 0.5 * (B + B.transpose()).eval();
-        faces_solver.compute(A, B);
-        if (faces_solver.info() != Eigen::Success) return {Quadric{}, kNone, kNone};
+        faces_solver.compute(0.5 * (A + A.transpose()), B);
+        return faces_solver.info() == Eigen::Success;
+    };
+    if (!fit_faces()) {
+        // A combination of the quadrics through the points may have no gradient on the faces
+        // (the gradient form singular: a run of exact pieces of a printed part). It has no
+        // distance to them to rank; the fit is sought among the others, in the form's range.
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gradient(B);
+        const Eigen::VectorXd& scale = gradient.eigenvalues();  // ascending
+        int first = 0;
+        while (first < count && !(scale[first] > 1e-12 * scale[count - 1])) ++first;
+        if (first == count) return {Quadric{}, kNone, kNone};
+        count -= first;
+        const Eigen::VectorXd unit = scale.tail(count).cwiseSqrt().cwiseInverse();
+        through = (through * gradient.eigenvectors().rightCols(count) * unit.asDiagonal()).eval();
+        if (!fit_faces()) return {Quadric{}, kNone, kNone};
     }
     const Eigen::Matrix<double, 10, 1> c = through * faces_solver.eigenvectors().col(0);
     const double next = count > 1 ? std::max(0.0, faces_solver.eigenvalues()[1]) : kNone;
