@@ -183,7 +183,9 @@ Fit fit_taubin_through(const Moments& points, const Moments& faces, double on) {
     Moments face_mean = shifted_moments(faces, local.center, local.radius);
     for (double& v : face_mean) v /= faces[0];
     const auto [Mp, Np] = taubin_forms(local.mean);
-    const auto [Mf, Nf] = taubin_forms(face_mean);
+    // (Named, not bound: a lambda below uses them, and C++17 lambdas cannot capture bindings.)
+    const std::pair<Matrix10, Matrix10> face_forms = taubin_forms(face_mean);
+    const Matrix10 &Mf = face_forms.first, &Nf = face_forms.second;
     // The quadrics through the points: Taubin's eigenvectors within `on` of them.
     const ReducedTaubin taubin = solve_reduced(Mp, Np, FitOptions{}.regularization);
     const double squared_scale = local.radius * local.radius;
