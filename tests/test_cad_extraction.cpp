@@ -784,6 +784,64 @@ TEST(CadExtraction, AFaceOfTwoTrianglesIsAPlaneOfItsOwn) {
     }
 }
 
+TEST(CadExtraction, ACoarseCylindersCapsFannedFromTheRimAreNotMergedIntoItsSide) {
+    // A cylinder of one facet row whose caps are polygons fanned from a rim vertex, as CAD
+    // exporters write them (an ABB robot base's boss, 24 facets): every vertex of a cap lies
+    // on the side's rims, so the finish's run of exact pieces tried cap and side as one
+    // surface, and the cap's faces, which cut across the cylinder, were held to the
+    // tessellation's deviation over both, the median of the faces' largest sagitta: every
+    // cap face borders the rim, and so do half the side's, so the median was the rim
+    // crease's. Cap and side became one region, typed an ellipsoid or a plane 0.13 to 0.24 of
+    // the radius off its faces. Each piece must now also sag as a smooth surface's facets do:
+    // within the deviation over the edges that are no creases, or within 16 times the least
+    // RMS of the others (the cap's is a thousand times the side's). Random poses,
+    // 16 to 48 facets, 0.4 and 1.5 times the radius tall: three regions, each one true face.
+    // What is left: at 12 facets and 0.4 of the radius tall, a quadric of the rims' pencil
+    // passes within the facets' own sag of both, and they still merge (0.2 tall, the side's
+    // facets stay planes of their own).
+    std::mt19937 rng(7);
+    for (const int around : {16, 24, 48}) {
+        for (const double height : {0.4, 1.5}) {
+            SCOPED_TRACE(std::to_string(around) + " facets, height " + std::to_string(height));
+            const Eigen::Matrix3d R = test::random_rotation(rng);
+            const Vec3 t(0.3, -1.2, 2.0);
+            PolygonSoup soup;
+            for (int ring = 0; ring < 2; ++ring)
+                for (int k = 0; k < around; ++k) {
+                    const double a = 2 * M_PI * k / around;
+                    soup.positions.push_back(R * Vec3(std::cos(a), std::sin(a), ring * height) + t);
+                }
+            std::vector<int> face_of_triangle;  // 0 the side, 1 and 2 the caps
+            for (int k = 0; k < around; ++k) {
+                const int quad[4] = {k, (k + 1) % around, around + (k + 1) % around, around + k};
+                soup.add_polygon(quad, 4);
+                face_of_triangle.insert(face_of_triangle.end(), 2, 0);
+            }
+            std::vector<int> bottom, top;
+            for (int k = 0; k < around; ++k) bottom.push_back(around - 1 - k), top.push_back(around + k);
+            soup.add_polygon(bottom.data(), around);
+            soup.add_polygon(top.data(), around);
+            face_of_triangle.insert(face_of_triangle.end(), around - 2, 1);
+            face_of_triangle.insert(face_of_triangle.end(), around - 2, 2);
+            const Mesh mesh = build_mesh(soup);
+            ASSERT_EQ(mesh.face_count(), face_of_triangle.size());
+            const Result r = test::approximate(mesh, counted(0));
+            ASSERT_EQ(r.proxies.size(), 3u);
+            std::map<int, std::set<int>> faces_in;  // region → the true faces it holds
+            for (std::size_t f = 0; f < face_of_triangle.size(); ++f) faces_in[r.face_labels[f]].insert(face_of_triangle[f]);
+            for (const ProxyResult& p : r.proxies) {
+                ASSERT_EQ(faces_in[p.id].size(), 1u) << "region " << p.id << " holds faces of two true faces";
+                if (*faces_in[p.id].begin() == 0) {
+                    EXPECT_EQ(p.type, QuadricType::cylinder) << type_name(p.type);
+                    EXPECT_NEAR(p.shape.radius, 1.0, 1e-6);
+                } else {
+                    EXPECT_EQ(p.type, QuadricType::plane) << type_name(p.type);
+                }
+            }
+        }
+    }
+}
+
 // A box with every edge chamfered at 45° (26 faces: 6 sides, 12 chamfers, 8 corner
 // triangles), in the pose `rotation`, each face a polygon fanned from its first corner: 44
 // triangles. No edge bends by the crease angle but the corners' (55°), so one chart holds

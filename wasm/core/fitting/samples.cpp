@@ -57,31 +57,37 @@ std::vector<int> sorted_copy(const std::vector<int>& faces) {
 }  // namespace
 
 Samples region_samples(const Model& model, const std::vector<int>& faces, const std::vector<double>* roughness,
-                       VertexWeight weight) {
+                       VertexWeight weight, const std::vector<char>* creases) {
     Samples out = vertex_samples(model.points, model.triangles, faces, weight);
     const std::vector<int> sorted = sorted_copy(faces);
     const DualGraph& g = model.graph;
     const std::size_t stride = median_stride(sorted);
-    std::vector<double> deviation;
+    std::vector<double> deviation, smooth_deviation;
     deviation.reserve(sorted.size() / stride + 1);
     for (std::size_t i = 0; i < sorted.size(); i += stride) {
         const int f = sorted[i];
-        double largest = 0;
+        double largest = 0, largest_smooth = 0;
         for (int e = g.begin(f); e < g.end(f); ++e) {
             const int h = g.neighbor[e];
             if (!std::binary_search(sorted.begin(), sorted.end(), h)) continue;
             largest = std::max(largest, g.sagitta[e]);
+            if (creases && !(*creases)[e]) largest_smooth = std::max(largest_smooth, g.sagitta[e]);
             const std::array<int, 2> edge = shared_edge(model, f, h);
             if (edge[0] >= 0) out.edge_midpoints.push_back(0.5 * (model.points[edge[0]] + model.points[edge[1]]));
         }
         out.midpoint_tolerances.resize(out.edge_midpoints.size(), largest);
         deviation.push_back(largest);
+        smooth_deviation.push_back(largest_smooth);
     }
     if (roughness) out.noise = strided_median(sorted, *roughness);
+    auto median = [](std::vector<double>& values) {
+        const auto middle = values.begin() + values.size() / 2;
+        std::nth_element(values.begin(), middle, values.end());
+        return *middle;
+    };
     if (deviation.empty()) return out;
-    const auto middle = deviation.begin() + deviation.size() / 2;
-    std::nth_element(deviation.begin(), middle, deviation.end());
-    out.tolerance = *middle;
+    out.tolerance = median(deviation);
+    out.smooth_tolerance = creases ? median(smooth_deviation) : out.tolerance;
     return out;
 }
 

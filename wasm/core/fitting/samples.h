@@ -21,6 +21,11 @@ struct Samples {
     // How far the points may stray from their surface without telling anything about it:
     // a tessellation's own chordal deviation (region_samples); 0 for exact data.
     double tolerance = 0;
+    // The same over the edges that are no creases (region_samples, given the creases): what
+    // the faces of one smooth surface sag by. Where the faces span two surfaces meeting at a
+    // crease, most of them may border it (a coarse disc and the cylinder it caps), and the
+    // tolerance is the crease's sagitta.
+    double smooth_tolerance = 0;
     // Midpoints of edges between the faces (region_samples: those of at most a thousand
     // faces): a surface holds the edges a tessellation laid along its straight lines.
     std::vector<Vec3> edge_midpoints;
@@ -62,9 +67,11 @@ Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triang
 // region (a tessellated cylinder turns across one edge of each face); the median of
 // those over the region's faces (a crease or a few noisy faces do not make it), at most
 // a thousand of them evenly strided. `roughness` (per face, Features::roughness; given on a
-// noisy mesh only) sets the samples' noise, the median over the same faces.
+// noisy mesh only) sets the samples' noise, the median over the same faces. `creases` (per
+// dual-graph link, Features::crease) sets the smooth tolerance.
 Samples region_samples(const Model& model, const std::vector<int>& faces,
-                       const std::vector<double>* roughness = nullptr, VertexWeight weight = VertexWeight::one);
+                       const std::vector<double>* roughness = nullptr, VertexWeight weight = VertexWeight::one,
+                       const std::vector<char>* creases = nullptr);
 
 // The scatter of a region's vertices that no surface accounts for: the median roughness
 // of its faces (as region_samples takes it) beyond the tessellation's deviation,

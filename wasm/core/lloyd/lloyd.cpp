@@ -1704,7 +1704,7 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) con
     const double stored = kStoredPrecision * kStoredPrecision;
     std::vector<int> all;
     for (const Piece& p : pieces) all.insert(all.end(), p.faces->begin(), p.faces->end());
-    const Samples s = region_samples(model_, all);
+    const Samples s = region_samples(model_, all, nullptr, VertexWeight::one, &features_.crease);
     const Moments vertices = moments_of(s);
     Moments united{};  // of the faces
     for (const Piece& p : pieces) add_to(united, p.moments);
@@ -1732,13 +1732,28 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) con
     FaceErrors evaluator;
     evaluator.reset(model_, {fit.quadric});
     double noise = 0;
+    std::vector<double> sags;  // per piece, its faces' mean squared distance
     for (const Piece& p : pieces) {
         double error = 0;
         for (int f : *p.faces) error += evaluator(f, 0);
         if (!(error <= sag * sag * p.moments[0])) return out;
         if (&p != &pieces.front() && faces_both_ways(fit.quadric, *pieces.front().faces, *p.faces)) return out;
         noise += p.noise;
+        sags.push_back(error / p.moments[0]);
     }
+    // The tessellation's deviation is the median sagitta of the faces' edges, and where the
+    // pieces meet at a crease most of their faces may border it (a disc fanned from a rim
+    // vertex, and a side one facet row tall, beside each other), so that the median is the
+    // crease's, and the disc passed: disc and side one ellipsoid, 0.13 of the radius off its
+    // faces. So each piece also sags as one smooth surface's facets do: within the deviation
+    // over the edges that are no creases, or as the other pieces do, within 16 times the
+    // least RMS (a facet's sag grows as its width squared: four times as wide; a coarse
+    // hole's facets differ little in width, and an irregular one's may bend by more than the
+    // crease angle).
+    const double smooth_sag = 2 * s.smooth_tolerance;
+    const double least = std::max(*std::min_element(sags.begin(), sags.end()), stored);
+    for (double piece : sags)
+        if (!(piece <= smooth_sag * smooth_sag) && !(piece <= 256 * least)) return out;
     // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not
     // (as for a region: faces within the fit's error or the noise of where its parts meet
     // count on neither).
