@@ -520,6 +520,8 @@ private:
     bool wide_pending_ = false;      // the pending teleport is a wide one
     double wide_unexplained_ = 0;    // unexplained() before it
     bool finishing_ = false;              // automatic count: no more insertions, merges only
+    double finish_energy_ = -1;           // the energy when the finish began
+    double handful_drift_ = 0;            // how far single handfuls' stages took it since, beyond their cost
     bool below_target_ = false;  // a target count the run settled (explained) or stopped below
     double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
