@@ -18,8 +18,8 @@ namespace vqsa {
 
 namespace {
 
-// How far above the energy it started from the Lloyd stage after a handful merged may
-// settle (see judge_merge): an order of magnitude.
+// How far above the energy the finish began at the Lloyd stages after single handfuls
+// merged may take it, all of them together (see judge_merge): an order of magnitude.
 constexpr double kHandfulDrift = 10;
 
 // FNV-1a, a word at a time: partition_hash and the memos' keys.
