@@ -38,14 +38,20 @@ namespace {
 // A median needs no more than a thousand faces, evenly strided.
 std::size_t median_stride(const std::vector<int>& faces) { return faces.size() / 1024 + 1; }
 
+// The upper median, reordering `values`; 0 of none.
+double upper_median(std::vector<double>& values) {
+    if (values.empty()) return 0;
+    const auto middle = values.begin() + values.size() / 2;
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+}
+
 // The median of a per-face value over the (sorted) faces, strided as region_samples does.
 double strided_median(const std::vector<int>& sorted, const std::vector<double>& values) {
     std::vector<double> picked;
     const std::size_t stride = median_stride(sorted);
     for (std::size_t i = 0; i < sorted.size(); i += stride) picked.push_back(values[sorted[i]]);
-    if (picked.empty()) return 0;
-    std::nth_element(picked.begin(), picked.begin() + picked.size() / 2, picked.end());
-    return picked[picked.size() / 2];
+    return upper_median(picked);
 }
 
 std::vector<int> sorted_copy(const std::vector<int>& faces) {
@@ -77,17 +83,11 @@ Samples region_samples(const Model& model, const std::vector<int>& faces, const 
         }
         out.midpoint_tolerances.resize(out.edge_midpoints.size(), largest);
         deviation.push_back(largest);
-        smooth_deviation.push_back(largest_smooth);
+        if (creases) smooth_deviation.push_back(largest_smooth);
     }
     if (roughness) out.noise = strided_median(sorted, *roughness);
-    auto median = [](std::vector<double>& values) {
-        const auto middle = values.begin() + values.size() / 2;
-        std::nth_element(values.begin(), middle, values.end());
-        return *middle;
-    };
-    if (deviation.empty()) return out;
-    out.tolerance = median(deviation);
-    out.smooth_tolerance = creases ? median(smooth_deviation) : out.tolerance;
+    out.tolerance = upper_median(deviation);
+    out.smooth_tolerance = creases ? upper_median(smooth_deviation) : out.tolerance;
     return out;
 }
 
