@@ -542,7 +542,7 @@ private:
     };
     PendingMerge pending_merge_;
     // unexplained() and the energy after a Lloyd stage from a partition (its
-    // partition_hash()), no merge made.
+    // partition_hash()), no merge made: under noise only (judge_merge).
     struct Reference {
         std::uint64_t state = 0;
         double unexplained = 0, energy = 0;
