@@ -572,11 +572,11 @@ TEST(CadExtraction, AutomaticallyTheHandfulsMergedOneByOneDoNotCompoundTheirDrif
 
 TEST(CadExtraction, OnACleanMeshNoMergeIsExcusedByTheDriftOfAStageWithoutIt) {
     // The stepped shaft exported finely (detail 3, 53K triangles) and irregularly meshed:
-    // clean, no noise. Its finish judged a batch of merges that left more error unexplained
-    // than before against a Lloyd stage run from the same partition without them, which had
-    // drifted up as far: the batch stood, and the finish ended at 6 regions of 7, the
-    // spherical end and the cylinder beside it one ellipsoid (accuracy 0.905). Only noise
-    // excuses such a drift.
+    // clean, no noise. Two merges of its finish (two pairs at once, then one) left thousands
+    // of times their margins more error unexplained than before, and each stood against a
+    // Lloyd stage from the same partition without it, which had drifted up as far: the
+    // finish ended at 6 regions of 7, the spherical end and the cylinder beside it one
+    // ellipsoid (accuracy 0.905). Only noise excuses such a drift.
     for (const CorpusCase& c : cad_corpus({"stepped_shaft"})) {
         if (c.variant != "irregular") continue;
         PartOptions options = c.options;
