@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 #include <map>
 #include <set>
 #include <sstream>
@@ -122,14 +123,21 @@ Outcome run(const vqsa::Part& part, int proxies, std::uint64_t seed, const std::
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// A bad argument or an unreadable mesh ends with its message, not std::terminate.
+int main(int argc, char** argv) try {
     std::set<std::string> parts, variants;
     std::string json_path;
     bool pose = true;  // --pose 0: the canonical pose, easier to look at
     double detail = 1;  // --detail: every sample count scaled (0.4: a coarse CAD export's tessellation)
     double noise = -1;  // --noise: the noisy variant's σ, relative to the diagonal (-1: the corpus's own)
-    for (int i = 1; i + 1 < argc; i += 2) {
+    const char* usage =
+        "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1] [--seed-offset K] [--detail X] [--noise X]\n";
+    for (int i = 1; i < argc; i += 2) {
         const std::string flag = argv[i];
+        if (i + 1 == argc) {
+            std::cerr << usage;
+            return 2;
+        }
         if (flag == "--parts") parts = list(argv[i + 1]);
         else if (flag == "--variants") variants = list(argv[i + 1]);
         else if (flag == "--json") json_path = argv[i + 1];
@@ -140,7 +148,7 @@ int main(int argc, char** argv) {
         else if (flag == "--detail") detail = std::stod(argv[i + 1]);
         else if (flag == "--noise") noise = std::stod(argv[i + 1]);
         else {
-            std::cerr << "usage: vqsa_cad [--parts a,b] [--variants clean,noisy,irregular] [--json FILE] [--dump DIR] [--verbose 1] [--seed-offset K] [--detail X] [--noise X]\n";
+            std::cerr << usage;
             return 2;
         }
     }
@@ -215,4 +223,10 @@ int main(int argc, char** argv) {
                         cell(w.radius, 100).c_str(), cell(w.half_angle, 1).c_str());
     if (!json_path.empty()) std::ofstream(json_path) << rows.dump(1) << "\n";
     return 0;
+} catch (const std::invalid_argument&) {
+    std::cerr << "vqsa_cad: an option's value is not a number\n";
+    return 2;
+} catch (const std::exception& e) {
+    std::cerr << "vqsa_cad: " << e.what() << "\n";
+    return 1;
 }

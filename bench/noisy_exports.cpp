@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,15 +33,20 @@ vqsa::Result automatic(const vqsa::Mesh& mesh) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// A bad argument or an unreadable mesh ends with its message, not std::terminate.
+int main(int argc, char** argv) try {
     if (argc < 2) {
         std::cerr << "usage: vqsa_noisy MESH [--noise 0.001,0.002] [--draws 3]\n";
         return 2;
     }
     std::vector<double> levels{0.001, 0.002};
     int draws = 3;
-    for (int i = 2; i + 1 < argc; i += 2) {
+    for (int i = 2; i < argc; i += 2) {
         const std::string flag = argv[i];
+        if (i + 1 == argc) {
+            std::cerr << "usage: vqsa_noisy MESH [--noise 0.001,0.002] [--draws 3]\n";
+            return 2;
+        }
         if (flag == "--noise") {
             levels.clear();
             std::stringstream in(argv[i + 1]);
@@ -79,4 +85,10 @@ int main(int argc, char** argv) {
             std::fflush(stdout);
         }
     return 0;
+} catch (const std::invalid_argument&) {
+    std::cerr << "vqsa_noisy: an option's value is not a number\n";
+    return 2;
+} catch (const std::exception& e) {
+    std::cerr << "vqsa_noisy: " << e.what() << "\n";
+    return 1;
 }
