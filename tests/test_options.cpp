@@ -65,6 +65,9 @@ TEST(Options, BadValuesSayWhichOptionAndWhatItTakes) {
               "proxies must be an integer between 1 and 1000000 or 'auto', not 1000001.0");
     EXPECT_EQ(invalid_argument_of([&] { set_option(o, "rings", "2.5"); }), "rings must be an integer between 1 and 100, not \"2.5\"");
     EXPECT_EQ(invalid_argument_of([&] { set_option(o, "tolerance", -1); }), "tolerance must be a number between 0 and 1, not -1");
+    // The seed's bound, the largest integer a JavaScript number holds, in full (it read 9.007199254740991e+15).
+    EXPECT_EQ(invalid_argument_of([&] { set_option(o, "seed", -1); }),
+              "seed must be an integer between 0 and 9007199254740991, not -1");
     EXPECT_EQ(invalid_argument_of([&] { set_option(o, "init", "random"); }), "init must be one of 'features' 'paper', not \"random\"");
     EXPECT_EQ(invalid_argument_of([&] { set_option(o, "smooth", "maybe"); }), "smooth must be true or false, not \"maybe\"");
     EXPECT_EQ(invalid_argument_of([&] { set_option(o, "speed", 1); }), "unknown option 'speed'");

@@ -65,7 +65,7 @@ std::vector<OptionSpec> make_schema() {
 
 std::string describe(const OptionSpec& spec) {
     auto number = [](double v) {
-        const json j = v == std::floor(v) && std::abs(v) < 1e15 ? json(static_cast<long long>(v)) : json(v);
+        const json j = v == std::floor(v) && std::abs(v) <= kMaxSafeInteger ? json(static_cast<long long>(v)) : json(v);
         return j.dump();
     };
     switch (spec.kind) {
