@@ -81,3 +81,32 @@ TEST(Features, ArcFacetsAreTheFacetsOfCurvedSurfacesNotFlatFacesBetweenCreases) 
             EXPECT_EQ(flagged_curved, curved);
         }
 }
+
+TEST(Features, AnInexactCoarseTessellationKeepsItsCreaseCharts) {
+    // A coarse hex nut (168 triangles; half its links bend by more than 21°, beyond the
+    // normal filter's range) as a decimated or re-exported CAD mesh has it: the top face
+    // exact, every other vertex off by up to 1e-5 of the size, so that less than half the
+    // faces lie in one plane with a neighbour to the stored precision and the mesh is no
+    // exact tessellation. Its bends were then read as noise of the faces' own width (which
+    // smooths the normals over rings of faces), and one of its seven crease charts went:
+    // a robot's tool flange, 19 % of its faces exactly flat, kept 7 of its 340 charts and
+    // ended with its face, bore and 40 holes in one region. Such noise leaves no two faces
+    // in one plane to the stored precision.
+    PartOptions options;
+    options.detail = 0.25;
+    const Part exact = make_part("hex_nut", options);
+    Part inexact = exact;
+    double top = -1e300;
+    for (const Vec3& p : inexact.mesh.vertices) top = std::max(top, p.z());
+    for (std::size_t i = 0; i < inexact.mesh.vertices.size(); ++i) {
+        Vec3& p = inexact.mesh.vertices[i];
+        const double k = static_cast<double>(i) + 1;
+        if (p.z() < top) p += 1e-5 * Vec3(std::sin(12.9898 * k), std::sin(78.233 * k), std::sin(37.719 * k));
+    }
+    const Features reference = detect_features(make_model(exact.mesh));
+    const Features features = detect_features(make_model(inexact.mesh));
+    ASSERT_TRUE(reference.exact);
+    EXPECT_FALSE(features.exact);
+    EXPECT_EQ(features.chart_count, reference.chart_count);
+    EXPECT_EQ(reference.chart_count, 7);
+}

@@ -502,9 +502,11 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // more than the filter's range, and no vertex is smooth: the smooth vertices' noise
     // reads low or nothing, and the filter, which weighs neighbours by how close their
     // normals are, weighs none. Where most neighbouring faces differ by more than the
-    // filter's range and the tessellation is no exact one, the noise is that of all
-    // vertices, and each face starts from the mean normal of its most consistent patch,
-    // wide enough that the differences between such means stay well inside the range.
+    // filter's range and fewer than a tenth of the faces lie in one plane with a neighbour
+    // (such noise leaves none so; a coarse or decimated export's holes and fans bend as
+    // much), the noise is that of all vertices, and each face starts from the mean normal
+    // of its most consistent patch, wide enough that the differences between such means
+    // stay well inside the range.
     std::vector<double> link_angle;
     for (int f = 0; f < n; ++f)
         for (int e = g.begin(f); e < g.end(f); ++e)
@@ -518,7 +520,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         flat_faces += flat[f];
     }
     out.exact = n > 0 && 2 * flat_faces >= n;
-    if (median(std::move(link_angle)) > options.filter_range && !out.exact) {
+    if (median(std::move(link_angle)) > options.filter_range && 10 * flat_faces < n) {
         noise = std::max(noise, levels.all);
         // k faces' mean tilts by 2σ/(h√k); a patch of r rings holds about 1 + 1.5 r(r + 1).
         const double ratio = 2 * noise / (0.5 * options.filter_range * median(altitude));
