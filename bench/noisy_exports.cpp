@@ -15,8 +15,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -35,8 +35,9 @@ vqsa::Result automatic(const vqsa::Mesh& mesh) {
 
 // A bad argument or an unreadable mesh ends with its message, not std::terminate.
 int main(int argc, char** argv) try {
+    const char* usage = "usage: vqsa_noisy MESH [--noise 0.001,0.002] [--draws 3]\n";
     if (argc < 2) {
-        std::cerr << "usage: vqsa_noisy MESH [--noise 0.001,0.002] [--draws 3]\n";
+        std::cerr << usage;
         return 2;
     }
     std::vector<double> levels{0.001, 0.002};
@@ -44,7 +45,7 @@ int main(int argc, char** argv) try {
     for (int i = 2; i < argc; i += 2) {
         const std::string flag = argv[i];
         if (i + 1 == argc) {
-            std::cerr << "usage: vqsa_noisy MESH [--noise 0.001,0.002] [--draws 3]\n";
+            std::cerr << usage;
             return 2;
         }
         if (flag == "--noise") {
@@ -54,7 +55,7 @@ int main(int argc, char** argv) try {
         } else if (flag == "--draws") {
             draws = std::stoi(argv[i + 1]);
         } else {
-            std::cerr << "usage: vqsa_noisy MESH [--noise 0.001,0.002] [--draws 3]\n";
+            std::cerr << usage;
             return 2;
         }
     }
