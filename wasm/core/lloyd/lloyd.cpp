@@ -11,6 +11,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +33,18 @@ struct Fnv {
         add(bits);
     }
 };
+
+// Memos are dropped whole past this many answers: a run rarely asks more before it ends,
+// and one that does asks of regions long gone.
+constexpr std::size_t kMemoLimit = std::size_t(1) << 16;
+
+template <class Value, class Compute>
+Value memoized(std::unordered_map<std::uint64_t, Value>& memo, std::uint64_t key, const Compute& compute,
+               std::size_t limit = kMemoLimit) {
+    if (const auto found = memo.find(key); found != memo.end()) return found->second;
+    if (memo.size() >= limit) memo.clear();
+    return memo.emplace(key, compute()).first->second;
+}
 
 // A region's quadric from its fit.
 void assign_fit(Proxy& p, const Fit& fit) {
@@ -921,11 +934,9 @@ std::uint64_t Lloyd::rejection_context() const {
     return noisy_ ? partition_hash() : 0;
 }
 
-std::function<bool(int, int)> Lloyd::rejected(const RegionFaces& faces) const {
+std::function<bool(int, int)> Lloyd::rejected(const std::vector<std::uint64_t>& prints) const {
     if (rejected_merges_.empty()) return [](int, int) { return false; };
-    std::vector<std::uint64_t> prints(proxies_.size());
-    for (std::size_t r = 0; r < prints.size(); ++r) prints[r] = fingerprint(static_cast<int>(r), faces);
-    return [this, prints = std::move(prints), context = rejection_context()](int a, int b) {
+    return [this, &prints, context = rejection_context()](int a, int b) {
         return rejected_merges_.count({context, std::min(prints[a], prints[b]), std::max(prints[a], prints[b])}) > 0;
     };
 }
@@ -1519,11 +1530,12 @@ bool Lloyd::merge_least_cost(const std::function<bool(int, int)>& eligible,
                              std::vector<std::pair<int, int>>* merged, double* merged_cost, int limit) {
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     const RegionFaces faces = faces_by_region();
+    const std::vector<std::uint64_t> prints = fingerprints(faces);
     std::vector<MergeCandidate> candidates;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
         if (!eligible(i, j)) continue;
-        Union u = fit_union({i, j});
+        Union u = fit_pair(i, j, prints);
         const double cost = u.moments[0] * u.fit.mean_squared - proxies_[i].area * proxies_[i].fit_error -
                             proxies_[j].area * proxies_[j].fit_error;
         candidates.push_back({cost, static_cast<int>(k), std::move(u)});
@@ -1590,33 +1602,16 @@ bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int
     // coarse tessellation's pieces, vertices_on_one_surface).
     const std::vector<std::pair<int, int>> pairs = adjacent_regions(model_, labels_);
     const RegionFaces faces = faces_by_region();
+    const std::vector<std::uint64_t> prints = fingerprints(faces);
     std::vector<MergeCandidate> candidates;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto [i, j] = pairs[k];
-        const Proxy &a = proxies_[i], &b = proxies_[j];
-        Union u = fit_union({i, j});
-        const double parts = a.area * a.fit_error + b.area * b.fit_error, noise = noise_energy(i) + noise_energy(j);
-        double united_error = u.moments[0] * u.fit.mean_squared;
-        const bool as_well_as_apart = united_error <= 1.25 * parts + 1e-12 * u.moments[0];
-        const bool within_their_noise = united_error <= noise;
-        const bool exact = united_error <= u.moments[0] * options_.precision * options_.precision;
-        bool one = within_noise ? as_well_as_apart || within_their_noise
-                                : as_well_as_apart && (exact || within_their_noise);
-        // Under noise each piece's quadric bends to its own noise, up to half below a plane's
-        // error (and so does the union's), and fails as_well_as_apart: at a count too, pieces
-        // that a plane holds within their noise are one face (the noisy plate assembly's large
-        // faces, two or three regions each at its count).
-        if (!one && noisy_) {
-            const Fit plane = fit_plane(u.moments);
-            if (u.moments[0] * plane.mean_squared <= noise)
-                u.fit = plane, united_error = u.moments[0] * plane.mean_squared, one = true;
+        if (std::optional<MergeCandidate> c = same_surface_candidate(i, j, within_noise, faces, prints)) {
+            c->pair = static_cast<int>(k);
+            candidates.push_back(std::move(*c));
         }
-        if (one && !has_two_parts(classify_union(u)))
-            candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, false});
-        else if (vertices_on_one_surface(u, i, j, faces))
-            candidates.push_back({united_error - parts, static_cast<int>(k), u, exact, true});
     }
-    const std::function<bool(int, int)> was_rejected = rejected(faces);
+    const std::function<bool(int, int)> was_rejected = rejected(prints);
     return merge_disjoint(
         pairs, std::move(candidates),
         [&](const MergeCandidate& c) {
@@ -1633,6 +1628,39 @@ bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int
             return c.exact || on_vertices || (noisy_ && q.is_plane()) || keeps_type(i, j, q, faces);
         },
         merged, nullptr, limit);
+}
+
+std::optional<Lloyd::MergeCandidate> Lloyd::same_surface_candidate(int i, int j, bool within_noise,
+                                                                    const RegionFaces& faces,
+                                                                    const std::vector<std::uint64_t>& prints) const {
+    const Proxy &a = proxies_[i], &b = proxies_[j];
+    // The answer depends on the two regions (their fingerprints) and on their proxies' own
+    // fits, which a merge may have set to the union's plane rather than their refit.
+    Fnv key;
+    key.add(prints[i]), key.add(prints[j]), key.add(a.fit_error), key.add(b.fit_error), key.add(a.area), key.add(b.area);
+    key.add(static_cast<std::uint64_t>(within_noise));
+    return memoized(same_surface_candidates_, key.h, [&]() -> std::optional<MergeCandidate> {
+        Union u = fit_pair(i, j, prints);
+        const double parts = a.area * a.fit_error + b.area * b.fit_error, noise = noise_energy(i) + noise_energy(j);
+        double united_error = u.moments[0] * u.fit.mean_squared;
+        const bool as_well_as_apart = united_error <= 1.25 * parts + 1e-12 * u.moments[0];
+        const bool within_their_noise = united_error <= noise;
+        const bool exact = united_error <= u.moments[0] * options_.precision * options_.precision;
+        bool one = within_noise ? as_well_as_apart || within_their_noise
+                                : as_well_as_apart && (exact || within_their_noise);
+        // Under noise each piece's quadric bends to its own noise, up to half below a plane's
+        // error (and so does the union's), and fails as_well_as_apart: at a count too, pieces
+        // that a plane holds within their noise are one face (the noisy plate assembly's large
+        // faces, two or three regions each at its count).
+        if (!one && noisy_) {
+            const Fit plane = fit_plane(u.moments);
+            if (u.moments[0] * plane.mean_squared <= noise)
+                u.fit = plane, united_error = u.moments[0] * plane.mean_squared, one = true;
+        }
+        if (one && !has_two_parts(classify_union(u))) return MergeCandidate{united_error - parts, -1, u, exact, false};
+        if (vertices_on_one_surface(u, i, j, faces)) return MergeCandidate{united_error - parts, -1, u, exact, true};
+        return std::nullopt;
+    }, kMemoLimit / 4);
 }
 
 bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const {
@@ -1689,27 +1717,25 @@ bool Lloyd::one_surface(const Quadric& q, int a, int b, const RegionFaces& faces
            !strays(q, faces[b]);
 }
 
-namespace {
-
-// Memos are dropped whole past this many answers: a run rarely asks more before it ends,
-// and one that does asks of regions long gone.
-constexpr std::size_t kMemoLimit = std::size_t(1) << 16;
-
-template <class Value, class Compute>
-Value memoized(std::unordered_map<std::uint64_t, Value>& memo, std::uint64_t key, const Compute& compute) {
-    if (const auto found = memo.find(key); found != memo.end()) return found->second;
-    if (memo.size() >= kMemoLimit) memo.clear();
-    return memo.emplace(key, compute()).first->second;
-}
-
-}  // namespace
-
 std::uint64_t Lloyd::fingerprint(int region, const RegionFaces& faces) const {
     Fnv fnv;
     for (int f : faces[region]) fnv.add(static_cast<std::uint64_t>(f));
     for (double m : proxies_[region].moments) fnv.add(m);
     fnv.add(region_noise_[region]);
     return fnv.h;
+}
+
+std::vector<std::uint64_t> Lloyd::fingerprints(const RegionFaces& faces) const {
+    std::vector<std::uint64_t> prints(proxies_.size());
+    for (std::size_t r = 0; r < prints.size(); ++r) prints[r] = fingerprint(static_cast<int>(r), faces);
+    return prints;
+}
+
+Lloyd::Union Lloyd::fit_pair(int a, int b, const std::vector<std::uint64_t>& prints) const {
+    Fnv key;
+    key.add(prints[a]), key.add(prints[b]);
+    // A union's moments and fit are some 400 bytes: fewer of them.
+    return memoized(unions_, key.h, [&] { return fit_union({a, b}); }, kMemoLimit / 4);
 }
 
 Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<int>& regions, const RegionFaces& faces) const {
@@ -2009,7 +2035,8 @@ bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost
     auto handful = [&](int r, int into) {
         return proxies_[r].faces < options_.min_quadric_faces && (!told_plane(r) || vertices_on(faces[r], into, faces));
     };
-    const std::function<bool(int, int)> was_rejected = rejected(faces);
+    const std::vector<std::uint64_t> prints = fingerprints(faces);
+    const std::function<bool(int, int)> was_rejected = rejected(prints);
     return merge_least_cost(
         [&](int a, int b) { return (handful(a, b) || handful(b, a)) && !was_rejected(a, b); },
         [&](const Union& u, int a, int b, const RegionFaces& faces) {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <set>
 #include <unordered_map>
 #include <utility>
@@ -279,6 +280,10 @@ private:
         Fit fit;
     };
     Union fit_union(const std::vector<int>& regions) const;
+    // fit_union({a, b}), kept by the two regions' fingerprints (`prints`, per region): the
+    // finish fits every adjacent pair again after each merge, though a merge and its Lloyd
+    // stage change few regions.
+    Union fit_pair(int a, int b, const std::vector<std::uint64_t>& prints) const;
     Classification classify_union(const Union& u) const;
     // The faces of a and b on each part of their union's quadric (beyond the margin a
     // region's validity is judged with), and whether that union would be an invalid region.
@@ -356,6 +361,10 @@ private:
     // receives them. Pairs rejected as they are (rejected) are not merged again.
     bool merge_same_surface(bool within_noise = true, std::vector<std::pair<int, int>>* merged = nullptr,
                             int limit = 1);
+    // The candidate merge of adjacent regions i and j if they lie on one surface, before
+    // the tests merge_same_surface makes of each candidate in turn; `prints`: fingerprints.
+    std::optional<MergeCandidate> same_surface_candidate(int i, int j, bool within_noise, const RegionFaces& faces,
+                                                         const std::vector<std::uint64_t>& prints) const;
     // The error a region may carry and be explained: its noise_energy, or its area times
     // `precision`² (kStoredPrecision² on an exact export), whichever is larger.
     double allowance(int proxy) const;
@@ -373,7 +382,7 @@ private:
     // (their fingerprints): it is not tried again until one of them changes, whatever
     // merges elsewhere did in between; under noise, only from the partition it was undone
     // from (rejection_context). For the partition of `faces`, as it is.
-    std::function<bool(int, int)> rejected(const RegionFaces& faces) const;
+    std::function<bool(int, int)> rejected(const std::vector<std::uint64_t>& prints) const;  // fingerprints; kept by reference
     std::uint64_t rejection_context() const;
     // Below a target count: judges the last insertion, then whether insertions have stopped
     // paying with every region explained.
@@ -428,6 +437,7 @@ private:
     // few regions (on a pocketed part, 3K faces merged from 130 regions to 110, they were
     // four fifths of 16 s). Keyed by `fingerprint`s (64-bit hashes, as partition_hash).
     std::uint64_t fingerprint(int region, const RegionFaces& faces) const;
+    std::vector<std::uint64_t> fingerprints(const RegionFaces& faces) const;  // every region's
     struct ExactRegion {  // merge_exact_pieces' look at one region
         bool exact = false, determined = false;
         Moments vertices{};
@@ -556,6 +566,8 @@ private:
     mutable std::unordered_map<std::uint64_t, VertexSurface> vertex_surfaces_;
     mutable std::unordered_map<std::uint64_t, bool> vertices_on_one_surface_;
     mutable std::unordered_map<std::uint64_t, ExactRegion> exact_regions_;
+    mutable std::unordered_map<std::uint64_t, Union> unions_;  // fit_pair's
+    mutable std::unordered_map<std::uint64_t, std::optional<MergeCandidate>> same_surface_candidates_;
     Snapshot snapshot_;
     // At a fixed count: growing past it as the automatic count does, then merging back to it.
     enum class Regrowth { untried, growing, merging, done };
