@@ -529,14 +529,28 @@ export function createViewer(host, options = {}) {
   }
   let paintQueued = false;
 
+  // Why a run ended, where the count alone does not say it (the report's stop_reason).
+  function stopped(report, asked) {
+    const cap = report.options['max-iterations'];
+    switch (report.stop_reason) {
+      case 'fitted': return asked === 'auto' ? 'automatic: every region fitted' : '';
+      case 'no_gain': return 'automatic: more proxies stopped paying';
+      case 'tolerance': return 'tolerance reached';
+      case 'max_iterations': return `stopped at the ${cap}-iteration cap`;
+      case 'exhausted': return 'no face left to seed';
+      default: return '';
+    }
+  }
+
   function summary() {
     const report = result.reportObject, metrics = report.metrics, asked = report.options.proxies;
     // Fewer than asked: say why (the surfaces ran out; the rest would have been slivers).
     const count = typeof asked === 'number' && result.proxies.length < asked && report.stop_reason === 'fitted'
       ? `${result.proxies.length} proxies (every surface found before ${asked})` : `${result.proxies.length} proxies`;
+    const why = stopped(report, asked);
     const edits = report.edits.length ? ` · ${report.edits.length} edit${report.edits.length > 1 ? 's' : ''}` : '';
     return `${count} · RMS ${format(report.rms_error_relative)} of the size` +
-      (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : '') + edits;
+      (metrics ? ` · projected ${format(metrics.rms)} of the diagonal` : '') + (why ? ` · ${why}` : '') + edits;
   }
 
   // A run's result, or an edited one (`edited`: the run's timeline and plot stay).

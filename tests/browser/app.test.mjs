@@ -336,9 +336,10 @@ test('a dropped CAD mesh runs with the automatic count until a count is chosen',
   await waitFor(fresh, ['done']);
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '6');  // the example's surfaces
   await runAndWait(fresh, () => drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' }));
-  // A capped cylinder is three surfaces: its side and two disks.
+  // A capped cylinder is three surfaces: its side and two disks; the status says why it stopped.
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '3');
   assert.equal(await fresh.isChecked('[data-option="proxies"] input[type="checkbox"]'), true);
+  assert.match(await fresh.textContent('.vqsa-status'), /^3 proxies · .* · automatic: every region fitted$/);
   await fresh.screenshot({ path: join(shots, 'app-automatic.png') });
   await setProxies(fresh, 2);
   await runAndWait(fresh, () => drop(fresh, 'cylinder_capped.off', { url: '/meshes/cylinder_capped.off' }));
@@ -349,6 +350,12 @@ test('a dropped CAD mesh runs with the automatic count until a count is chosen',
   await runAndWait(fresh, () => fresh.click('button:has-text("Run")'));
   assert.equal(await fresh.getAttribute('.vqsa-viewer', 'data-proxies'), '3');
   assert.match(await fresh.textContent('.vqsa-status'), /^3 proxies \(every surface found before 6\)/);
+  // A run the iteration cap ends is unfinished, and says so.
+  const cap = fresh.locator('[data-option="maxIterations"] input');
+  await cap.fill('2');
+  await cap.press('Enter');
+  await runAndWait(fresh, () => fresh.click('button:has-text("Run")'));
+  assert.match(await fresh.textContent('.vqsa-status'), / · stopped at the 2-iteration cap$/);
   assert.deepEqual(consoleErrors, []);
   await fresh.close();
 });
