@@ -226,18 +226,21 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     for (int f = 0; f < model_.face_count(); ++f) face_noise_[f] = face_noise(model_, features_.roughness, f);
     // Each chart's error under its own fit, what a proxy of its own would leave. A chart
     // of a handful of faces is as likely noise as structure, unless it is an exact plane
-    // (exactly_planar: a coarse CAD tessellation's face, two triangles).
+    // (exactly_planar: a coarse CAD tessellation's face, two triangles) or one triangle
+    // creased all round on an exact tessellation (face_of_its_own).
     chart_error_.assign(features_.chart_count, 0.0);
     chart_told_.assign(features_.chart_count, 0);
     FaceErrors own;
     for (int c = 0; c < features_.chart_count; ++c) {
         const int faces = static_cast<int>(chart_faces_[c].size());
         const Moments sum = moments_of(model_, chart_faces_[c]);
-        if (!(sum[0] > 0) || faces < 2) continue;
+        const bool own_face = face_of_its_own(chart_faces_[c]);
+        if (!(sum[0] > 0) || (faces < 2 && !own_face)) continue;
         const Fit fit = fit_proxy(sum, faces, options_);
         double noise = 0;
         for (int f : chart_faces_[c]) noise += face_noise_[f];
-        chart_told_[c] = faces >= options_.min_quadric_faces || exactly_planar(fit.mean_squared, noise / sum[0]);
+        chart_told_[c] =
+            faces >= options_.min_quadric_faces || own_face || exactly_planar(fit.mean_squared, noise / sum[0]);
         if (!chart_told_[c]) continue;
         own.reset(model_, {fit.quadric});
         for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
@@ -1956,6 +1959,16 @@ bool Lloyd::joins_faces_across_creases(const Quadric& q, const std::vector<int>&
     return rounds_off(std::move(crease_vertices), (region_noise_[region_a] + region_noise_[region_b]) / area, &q);
 }
 
+bool Lloyd::face_of_its_own(const std::vector<int>& faces) const {
+    // One triangle creased all round, on a tessellation without noise: a triangular face of
+    // the part (a rib's side, exported by OpenSCAD as one triangle). As a chart of one face
+    // it was never told, no insertion went there, and a neighbour's region took it across
+    // its creases (Mendel90's fan bracket: its base plate's top and a rib's side, one cone).
+    // Given its proxy, its noise, borrowed from the rest of the mesh (a coarse cylinder's
+    // sag), left it no exact plane: a handful, which the finish merged away at least cost.
+    return features_.exact && faces.size() == 1 && chart_faces_[features_.chart[faces.front()]].size() == 1;
+}
+
 bool Lloyd::exactly_planar(double plane_mean_squared, double noise2) {
     // Faces in one plane as closely as a file stores them, where the mesh is as exact (a
     // coarse CAD tessellation's face: a box as 12 triangles, a prism's sides one quad
@@ -2028,7 +2041,8 @@ bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost
     // over a plate's bottom, its chamfers and a side, 5 % of the size off its quadric).
     auto told_plane = [&](int r) {
         const Proxy& p = proxies_[r];
-        if (holds_plane[r] || (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area))) return true;
+        if (holds_plane[r] || face_of_its_own(faces[r]) || (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area)))
+            return true;
         return options_.proxies == 0 && in_one_plane(r) &&
                std::none_of(faces[r].begin(), faces[r].end(), [&](int f) { return features_.arc_facet[f]; });
     };

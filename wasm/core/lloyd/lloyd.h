@@ -391,6 +391,8 @@ private:
     // (mean square), are an exact plane: a face of a coarse CAD tessellation, however few
     // of them (one triangle too).
     static bool exactly_planar(double plane_mean_squared, double noise2);
+    // Whether `faces` are one triangle that is a chart of its own on an exact tessellation.
+    bool face_of_its_own(const std::vector<int>& faces) const;
     // Whether the vertices of `region` lie on the surface of region `other` as closely as
     // its own do.
     bool vertices_on(const std::vector<int>& region, int other, const RegionFaces& faces) const;
