@@ -1623,7 +1623,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int
             const Quadric& q = c.u.fit.quadric;
             // Judged on the faces, else on the vertices (a coarse tessellation's pieces).
             const bool on_faces = !c.on_vertices && one_surface(q, i, j, faces, errors_against(q, i, j, faces));
-            const bool on_vertices = c.on_vertices || (!on_faces && vertices_on_one_surface(c.u, i, j, faces));
+            const bool on_vertices = c.on_vertices || (!on_faces && vertices_on_one_surface(c.u, i, j, faces, prints));
             if (!on_faces && !on_vertices) return false;
             // Under noise, model selection types a piece of a plane as whatever bends within its
             // noise (a paraboloid over half a noisy flange's face): a plane that holds both parts
@@ -1640,7 +1640,8 @@ std::optional<Lloyd::MergeCandidate> Lloyd::same_surface_candidate(int i, int j,
     // The answer depends on the two regions (their fingerprints) and on their proxies' own
     // fits, which a merge may have set to the union's plane rather than their refit.
     Fnv key;
-    key.add(prints[i]), key.add(prints[j]), key.add(a.fit_error), key.add(b.fit_error), key.add(a.area), key.add(b.area);
+    key.add(prints[i]), key.add(prints[j]);
+    key.add(a.fit_error), key.add(b.fit_error), key.add(a.area), key.add(b.area);
     key.add(static_cast<std::uint64_t>(within_noise));
     return memoized(same_surface_candidates_, key.h, [&]() -> std::optional<MergeCandidate> {
         Union u = fit_pair(i, j, prints);
@@ -1661,7 +1662,8 @@ std::optional<Lloyd::MergeCandidate> Lloyd::same_surface_candidate(int i, int j,
                 u.fit = plane, united_error = u.moments[0] * plane.mean_squared, one = true;
         }
         if (one && !has_two_parts(classify_union(u))) return MergeCandidate{united_error - parts, -1, u, exact, false};
-        if (vertices_on_one_surface(u, i, j, faces)) return MergeCandidate{united_error - parts, -1, u, exact, true};
+        if (vertices_on_one_surface(u, i, j, faces, prints))
+            return MergeCandidate{united_error - parts, -1, u, exact, true};
         return std::nullopt;
     }, kMemoLimit / 4);
 }
@@ -1815,7 +1817,8 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) con
     return out;
 }
 
-bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const {
+bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces,
+                                    const std::vector<std::uint64_t>& prints) const {
     // A tessellation lays its faces inside a curved surface: a piece of a coarse cylinder
     // fits a quadric bent to its own chords, and the union's quadric leaves each piece with
     // several times its own error, as two surfaces would. Its vertices lie on the surface:
@@ -1827,7 +1830,7 @@ bool Lloyd::vertices_on_one_surface(const Union& u, int a, int b, const RegionFa
     // surface: the tests on the faces decide.
     if (!(u.fit.mean_squared > 100 * stored)) return false;
     Fnv key;
-    key.add(fingerprint(a, faces)), key.add(fingerprint(b, faces));
+    key.add(prints[a]), key.add(prints[b]);
     return memoized(vertices_on_one_surface_, key.h, [&] {
         std::vector<int> both = faces[a];
         both.insert(both.end(), faces[b].begin(), faces[b].end());
@@ -2041,8 +2044,8 @@ bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost
     // over a plate's bottom, its chamfers and a side, 5 % of the size off its quadric).
     auto told_plane = [&](int r) {
         const Proxy& p = proxies_[r];
-        if (holds_plane[r] || face_of_its_own(faces[r]) || (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area)))
-            return true;
+        if (holds_plane[r] || face_of_its_own(faces[r])) return true;
+        if (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area)) return true;
         return options_.proxies == 0 && in_one_plane(r) &&
                std::none_of(faces[r].begin(), faces[r].end(), [&](int f) { return features_.arc_facet[f]; });
     };

@@ -381,8 +381,9 @@ private:
     // Whether merging regions a and b was undone (judge_merge) while they were as they are
     // (their fingerprints): it is not tried again until one of them changes, whatever
     // merges elsewhere did in between; under noise, only from the partition it was undone
-    // from (rejection_context). For the partition of `faces`, as it is.
-    std::function<bool(int, int)> rejected(const std::vector<std::uint64_t>& prints) const;  // fingerprints; kept by reference
+    // from (rejection_context). For the partition whose fingerprints are `prints`, which the
+    // predicate reads by reference: they must outlive it.
+    std::function<bool(int, int)> rejected(const std::vector<std::uint64_t>& prints) const;
     std::uint64_t rejection_context() const;
     // Below a target count: judges the last insertion, then whether insertions have stopped
     // paying with every region explained.
@@ -417,7 +418,9 @@ private:
     bool one_surface(const Quadric& q, int a, int b, const RegionFaces& faces, const std::array<double, 2>& error) const;
     // Whether the vertices of regions a and b (union u) lie on one quadric, with one part
     // under them, far closer than their faces do: a tessellation's surface (see lloyd.cpp).
-    bool vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces) const;
+    // `prints`: every region's fingerprint, for `faces`.
+    bool vertices_on_one_surface(const Union& u, int a, int b, const RegionFaces& faces,
+                                 const std::vector<std::uint64_t>& prints) const;
     // Whether the vertices of `regions` lie on one quadric as closely as a file stores them
     // and determine it (no other comes within the tessellation's deviation), and whether they
     // are one surface on it: each region's faces within that deviation, all facing one way,
