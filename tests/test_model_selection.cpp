@@ -278,6 +278,31 @@ TEST(ModelSelection, ABandOneFacetAcrossIsTheSurfaceItsEdgesLieOn) {
     }
 }
 
+// Lloyd gives a region its faces do not determine a plane (a strip one facet wide), and
+// that plane was the only general quadric model selection started from: the cylinder and
+// the sphere took their axis guesses from it, and were not fitted. A plate's rounded corner
+// one facet tall, 3 mm thick and a quarter circle of radius 20 mm (Mendel90's spool holder
+// brackets), was reported a plane 0.5 % of the part's size off its vertices. Its vertices
+// lie on two circles, and its edges' midpoints say which surface runs between them.
+TEST(ModelSelection, ABandWhosePlaneMissesItsVerticesIsTypedByThem) {
+    std::mt19937 rng(29);
+    for (int trial = 0; trial < 5; ++trial) {
+        SCOPED_TRACE(trial);
+        Shape band = make_grid([](double u, double v) { return Vec3(20 * std::cos(u), 20 * std::sin(u), v); }, 0,
+                               M_PI / 2, 0, 3, 16, 1);
+        transform(band.mesh, test::random_rotation(rng), Vec3(5, -2, 7));
+        const Model model = make_model(band.mesh);
+        std::vector<int> faces(model.face_count());
+        std::iota(faces.begin(), faces.end(), 0);
+        const Quadric plane = fit_plane(moments_of(model, faces)).quadric;
+        ASSERT_TRUE(plane.is_plane());
+        const ModelChoice choice = select_model(region_samples(model, faces), plane);
+        EXPECT_STREQ(type_name(choice.chosen.type), "cylinder");
+        if (choice.chosen.type == QuadricType::cylinder)
+            EXPECT_NEAR(choice.chosen.shape.radius * model.frame.scale, 20, 1e-3);
+    }
+}
+
 // A pin one facet row long has all its vertices on its two end circles, and so on the
 // sphere centred half way along it, which passes the middle of each facet by about half
 // the pin's length. A vertex moved off its circle across the axis, as where the pin meets

@@ -208,6 +208,34 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     const bool every_type = options.rivals || options.imposed == ImposedType::none;
     const auto wanted = [&](ImposedType type) { return every_type || options.imposed == type; };
     if (wanted(ImposedType::plane)) add_special(fit_plane_geometric(s));
+    // A region its faces do not determine has a plane for its quadric (a strip: Lloyd's
+    // min_quadric_faces and is_strip), though its vertices may not be flat: a plate's rounded
+    // corner one facet tall, whose two rows of vertices lie on two circles of its cylinder.
+    // Where the plane misses them by more than twice all that explains a miss (the
+    // tessellation's deviation, the stored precision, the noise), the sphere and the
+    // cylinder are fitted too, the cylinder from each principal direction of the vertices
+    // (for a band, its axis is one; the general quadric, a plane, gives none). Each competes
+    // if it holds the vertices an order of magnitude closer than the plane: a curved fit
+    // also bends to noise, by far less.
+    const double explained2 = exact_squared(extent, options) + s.tolerance * s.tolerance + s.noise * s.noise +
+                              s.scatter * s.scatter;
+    const bool flat_misses = general.is_plane() && !candidates.empty() &&
+                             candidates.front().rms * candidates.front().rms > 4 * explained2;
+    if (s.points.size() >= 6 && flat_misses && options.imposed == ImposedType::none) {
+        const std::size_t planes = candidates.size();
+        const double plane_rms = candidates.front().rms;
+        add_special(fit_sphere_geometric(s));
+        Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+        for (std::size_t i = 0; i < s.points.size(); ++i) {
+            const Vec3 d = s.points[i] - center;
+            scatter += s.weights[i] * d * d.transpose();
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(scatter);
+        for (int i = 0; i < 3; ++i) add_special(fit_cylinder_geometric(s, principal.eigenvectors().col(i)));
+        candidates.erase(std::remove_if(candidates.begin() + planes, candidates.end(),
+                                        [&](const TypedFit& c) { return !(kRunAway * c.rms <= plane_rms); }),
+                         candidates.end());
+    }
     if (s.points.size() >= 6 && (!general.is_plane() || options.imposed != ImposedType::none)) {
         if (wanted(ImposedType::sphere)) add_special(fit_sphere_geometric(s));
         // Axis guesses from the general quadric: the eigenvector of A with the smallest
@@ -278,8 +306,13 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         // tells of something else than the region's surface.
         double allowed = floor2;
         for (double t : s.midpoint_tolerances) allowed += t * t / s.midpoint_tolerances.size();
+        // A candidate strays by the larger of its mean squares at the midpoints and at the
+        // vertices: a quadric fitted to the faces may also pass the midpoints and miss the
+        // vertices (a tooth flank's near-flat cone, 40 times farther from them than their
+        // plane), and it is no more the mesh's surface.
         std::vector<double> strays;
-        for (const TypedFit& c : candidates) strays.push_back(midpoint_mean_square(s, c.quadric, false));
+        for (const TypedFit& c : candidates)
+            strays.push_back(std::max(midpoint_mean_square(s, c.quadric, false), c.rms * c.rms));
         const double least = *std::min_element(strays.begin(), strays.end());
         const double noise_bound = s.noise > 0 ? least + allowed + (kNoiseCap * s.noise) * (kNoiseCap * s.noise)
                                                : std::numeric_limits<double>::infinity();

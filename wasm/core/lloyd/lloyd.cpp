@@ -1375,11 +1375,95 @@ void Lloyd::ensure_valid() {
         changed[chosen] = changed[added] = 1;
         refit_regions(model_, labels_, options_, proxies_, changed);
         evaluate();
-        // The split-off part joins another neighbour it lies on one surface with, if any
-        // (a tessellation's facet beside a tangent plane belongs to the curved side).
-        absorb(added, chosen);
-        if (options_.proxies > 0 && static_cast<int>(proxies_.size()) > options_.proxies) merge_cheapest();
+        // A part of a quadric need not be connected, nor what remains (two coplanar facets
+        // at either end of a plate's edge, or faces the noise put on the second part).
+        if (settle_pieces({chosen, added})) evaluate();
+        // The split-off pieces join another neighbour each lies on one surface with, if any
+        // (a tessellation's facet beside a tangent plane belongs to the curved side); the
+        // last first, as a merge renumbers the regions after the one it removes.
+        for (int r = static_cast<int>(proxies_.size()) - 1; r >= added; --r) absorb(r, chosen);
+        while (options_.proxies > 0 && static_cast<int>(proxies_.size()) > options_.proxies && merge_cheapest()) {
+        }
     }
+}
+
+bool Lloyd::settle_pieces(const std::vector<int>& regions) {
+    const DualGraph& g = model_.graph;
+    const double factor = options_.noise_factor * options_.noise_factor;
+    FaceErrors errors;
+    errors.reset(model_, quadrics_of(proxies_));
+    const int known = static_cast<int>(proxies_.size());  // regions `errors` knows
+    std::vector<char> changed(known, 0);
+    // Pieces meet at a vertex at least: a split may leave a facet strip's triangles every
+    // other one on either part (a chamfer ring beside a plane), which are one face all the
+    // same, and the smoothing joins them.
+    std::vector<int> root(model_.face_count()), at_vertex(model_.points.size(), -1);
+    std::function<int(int)> find = [&](int f) { return root[f] == f ? f : root[f] = find(root[f]); };
+    for (int region : regions) {
+        const std::vector<int> members = faces_of(labels_, region);
+        for (int f : members) root[f] = f;
+        for (int f : members)
+            for (int v : model_.triangles[f]) {
+                if (at_vertex[v] < 0) at_vertex[v] = f;
+                else root[find(f)] = find(at_vertex[v]);
+            }
+        for (int f : members)
+            for (int v : model_.triangles[f]) at_vertex[v] = -1;
+        std::vector<int> index(model_.face_count(), -1);  // of each piece's root
+        std::vector<std::vector<int>> faces;
+        std::vector<double> area;
+        for (int f : members) {
+            int& k = index[find(f)];
+            if (k < 0) k = static_cast<int>(faces.size()), faces.emplace_back(), area.push_back(0);
+            faces[k].push_back(f), area[k] += model_.areas[f];
+        }
+        const int pieces = static_cast<int>(faces.size());
+        const int largest = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
+        for (int k = 0; k < pieces; ++k) {
+            if (k == largest) continue;
+            // The adjacent region whose surface holds the piece closest, if it holds it as
+            // closely as its own faces (per unit area, within the noise factor) or within the
+            // piece's noise (or the stored precision): there the piece was the noise's; else
+            // it is a face of its own.
+            double noise = 0;
+            for (int f : faces[k]) noise += face_noise_[f];
+            const double within = std::max(factor * noise, area[k] * kStoredPrecision * kStoredPrecision);
+            std::set<int> neighbours;
+            for (int f : faces[k])
+                for (int e = g.begin(f); e < g.end(f); ++e) {
+                    const int j = labels_[g.neighbor[e]];
+                    if (j != region && j < known) neighbours.insert(j);
+                }
+            int to = -1;
+            double least = std::numeric_limits<double>::infinity();
+            for (int j : neighbours) {
+                double error = 0;
+                for (int f : faces[k]) error += errors(f, j);
+                if (error < least) least = error, to = j;
+            }
+            const bool explained =
+                to >= 0 && least <= std::max(within, factor * area[k] * proxies_[to].error / proxies_[to].area);
+            // A piece too small to tell a surface of its own goes to that neighbour all the
+            // same: under noise, a face or two the noise put on the second part; on a clean
+            // mesh, single facets along a seam. A handful of faces tells one if it is an exact
+            // plane on an exact export (per face, the roughness of its facets beside a crease
+            // is not nil), a triangle if it is creased all round (any triangle is a plane).
+            const bool told = static_cast<int>(faces[k].size()) >= options_.min_quadric_faces ||
+                              face_of_its_own(faces[k]) ||
+                              (exact_ && faces[k].size() > 1 &&
+                               exactly_planar(fit_plane(moments_of(model_, faces[k])).mean_squared, 0));
+            if (to < 0 || (!explained && told)) {
+                to = static_cast<int>(proxies_.size());
+                add_proxy(faces[k].front());
+                changed.push_back(0);
+            }
+            for (int f : faces[k]) labels_[f] = to;
+            changed[region] = changed[to] = 1;
+        }
+    }
+    if (std::find(changed.begin(), changed.end(), 1) == changed.end()) return false;
+    refit_regions(model_, labels_, options_, proxies_, changed);
+    return true;
 }
 
 void Lloyd::release_minor_parts() {

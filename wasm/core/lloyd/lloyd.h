@@ -342,6 +342,11 @@ private:
     bool merge_cheapest(int limit = 1);
     // Splits what is still invalid at the end of the stage (see lloyd.cpp).
     void ensure_valid();
+    // Each piece of these regions (faces meeting at a vertex at least) but the largest goes
+    // to the adjacent region whose surface holds it within its noise, or becomes a region of
+    // its own if it can tell a surface (see lloyd.cpp); the regions changed are refitted.
+    // Whether any did.
+    bool settle_pieces(const std::vector<int>& regions);
     // Merges `region` into the neighbour (not `excluded`) it costs least and lies on one
     // surface with (one_surface), whose union's quadric has one part.
     bool absorb(int region, int excluded);
