@@ -217,21 +217,17 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     // (for a band, its axis is one; the general quadric, a plane, gives none). Each competes
     // if it holds the vertices an order of magnitude closer than the plane: a curved fit
     // also bends to noise, by far less.
-    const double explained2 = exact_squared(extent, options) + s.tolerance * s.tolerance + s.noise * s.noise +
-                              s.scatter * s.scatter;
+    const double exact2 = exact_squared(extent, options);
+    const double floor2 = exact2 + s.tolerance * s.tolerance;
+    const double explained2 = floor2 + s.noise * s.noise + s.scatter * s.scatter;
     const bool flat_misses = general.is_plane() && !candidates.empty() &&
                              candidates.front().rms * candidates.front().rms > 4 * explained2;
     if (s.points.size() >= 6 && flat_misses && options.imposed == ImposedType::none) {
         const std::size_t planes = candidates.size();
         const double plane_rms = candidates.front().rms;
         add_special(fit_sphere_geometric(s));
-        Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-        for (std::size_t i = 0; i < s.points.size(); ++i) {
-            const Vec3 d = s.points[i] - center;
-            scatter += s.weights[i] * d * d.transpose();
-        }
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(scatter);
-        for (int i = 0; i < 3; ++i) add_special(fit_cylinder_geometric(s, principal.eigenvectors().col(i)));
+        const Eigen::Matrix3d axes = principal_axes(s, center);
+        for (int i = 0; i < 3; ++i) add_special(fit_cylinder_geometric(s, axes.col(i)));
         candidates.erase(std::remove_if(candidates.begin() + planes, candidates.end(),
                                         [&](const TypedFit& c) { return !(kRunAway * c.rms <= plane_rms); }),
                          candidates.end());
@@ -284,8 +280,6 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
     const auto undetermined = [&](const TypedFit& c) { return static_cast<std::size_t>(c.parameters) >= s.points.size(); };
     if (!std::all_of(candidates.begin(), candidates.end(), undetermined))
         candidates.erase(std::remove_if(candidates.begin(), candidates.end(), undetermined), candidates.end());
-    const double exact2 = exact_squared(extent, options);
-    const double floor2 = exact2 + s.tolerance * s.tolerance;
     for (TypedFit& c : candidates) c.bic = criterion(s, c.rms, c.parameters, floor2);
     std::stable_sort(candidates.begin(), candidates.end(), [](const TypedFit& a, const TypedFit& b) { return a.bic < b.bic; });
     // Candidates the edges' midpoints rule out: no choice, but still the report's runner-up

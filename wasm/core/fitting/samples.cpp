@@ -2,6 +2,8 @@
 
 #include "fitting/distance.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 
@@ -99,6 +101,13 @@ double region_scatter(const std::vector<int>& faces, const std::vector<double>& 
 double taubin_rms(const Samples& s, const Quadric& q, double cap) {
     const double a = q.hessian_norm();
     return weighted_rms(s, [&](const Vec3& p) { return std::min(std::abs(taubin_distance(q, a, p)), cap); });
+}
+
+Eigen::Matrix3d principal_axes(const Samples& s, const Vec3& centroid) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+        cov += s.weights[i] * (s.points[i] - centroid) * (s.points[i] - centroid).transpose();
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors();
 }
 
 }  // namespace vqsa

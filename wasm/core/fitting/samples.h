@@ -92,6 +92,10 @@ inline Vec3 weighted_centroid(const Samples& s) {
     return c / s.total_weight;
 }
 
+// The points' principal directions about `centroid` (their weighted centroid): the
+// eigenvectors of their weighted scatter, columns by increasing variance.
+Eigen::Matrix3d principal_axes(const Samples& s, const Vec3& centroid);
+
 // √(Σ wᵢ d(pᵢ)² / Σ wᵢ) for a distance function d.
 template <class Distance>
 double weighted_rms(const Samples& s, const Distance& distance) {

@@ -22,12 +22,7 @@ Eigen::Matrix3d frame_with_axis(const Vec3& axis) {
 }
 
 // The normal of the samples' least-squares plane through `centroid`, their weighted centroid.
-Vec3 plane_normal(const Samples& s, const Vec3& centroid) {
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (std::size_t i = 0; i < s.points.size(); ++i)
-        cov += s.weights[i] * (s.points[i] - centroid) * (s.points[i] - centroid).transpose();
-    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
-}
+Vec3 plane_normal(const Samples& s, const Vec3& centroid) { return principal_axes(s, centroid).col(0); }
 
 // The fit that is `shape`: its quadric and its RMS orthogonal distance to the samples.
 SpecialFit fit_of(const Classification& shape, const Samples& s) {
