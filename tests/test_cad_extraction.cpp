@@ -1638,9 +1638,7 @@ TEST(CadExtraction, ASplitAtTheStopLeavesNoRegionInPieces) {
         PartOptions po;
         po.detail = c.detail, po.noise = 0.002, po.random_pose = true;
         const Part part = make_part(c.part, po);
-        Options options = c.proxies > 0 ? counted(c.proxies) : Options{};
-        options.project = false;
-        const Result r = test::approximate(part.mesh, options);
+        const Result r = test::approximate(part.mesh, counted(c.proxies));
         const int regions = static_cast<int>(r.proxies.size());
         // Pieces that meet at a vertex are one: a split may take every other triangle of a
         // facet row (a chamfer's), which the smoothing joins.
