@@ -426,7 +426,7 @@ TEST(CadExtraction, PiecesOfOneNoisyFaceMergeAtACount) {
     EXPECT_GE(o.accuracy, 0.97);
 }
 
-TEST(CadExtraction, PiecesOfANoisyPlaneMergeAtACountThoughEachBendsToItsNoise) {
+TEST(CadExtractionHeavy, PiecesOfANoisyPlaneMergeAtACountThoughEachBendsToItsNoise) {
     // The noisy plate assembly at its true count of 39: its rims, a few σ tall, hold no proxy
     // that pays, so Lloyd spends the spare proxies on pieces of the large faces. Each piece's
     // quadric bends to its own noise, up to half below the plane's error, so the pieces did
@@ -442,7 +442,7 @@ TEST(CadExtraction, PiecesOfANoisyPlaneMergeAtACountThoughEachBendsToItsNoise) {
     }
 }
 
-TEST(CadExtraction, UnderNoiseAHandOverDoesNotCarryARegionAcrossACrease) {
+TEST(CadExtractionHeavy, UnderNoiseAHandOverDoesNotCarryARegionAcrossACrease) {
     // The seam step's hand-over (a region's far half made a plane, local Lloyd settling the
     // rest) is for tangent seams; local Lloyd could carry the other region across a crease,
     // over a second large face of the noisy plate assembly (2 242 faces to 3 682), and such a
@@ -589,7 +589,7 @@ TEST(CadExtraction, OnACleanMeshNoMergeIsExcusedByTheDriftOfAStageWithoutIt) {
     }
 }
 
-TEST(CadExtraction, UnderNoiseNoFlatConeHoldsBothFacesOfAPlate) {
+TEST(CadExtractionHeavy, UnderNoiseNoFlatConeHoldsBothFacesOfAPlate) {
     // Under noise a plate's two faces lie on the two nappes of a flat cone (half-angle 89.9°,
     // its apex tens of plate lengths away), which fits them as a pair of parallel planes
     // would; with its nappes not counted as parts, model selection typed such regions cones
@@ -1067,6 +1067,70 @@ TEST(CadExtraction, AutomaticallyAChamferedBoxIsItsFacesInEveryPose) {
     expect_the_boxs_faces_in_random_poses(30, 12, counted(0));
 }
 
+// A prism 28 × 20 × 7.6 over a rectangle whose corners are rounded to a radius of 3 in 10
+// facets each, in the pose `rotation`: 10 faces (4 sides, 4 corners, 2 caps), each side and
+// facet one quad, each cap one polygon.
+LabelledSoup rounded_prism(const Eigen::Matrix3d& rotation) {
+    const double width = 28, depth = 20, radius = 3, height = 7.6;
+    const int facets = 10;
+    std::vector<Vec3> outline;
+    for (int corner = 0; corner < 4; ++corner) {
+        const double x = (corner == 0 || corner == 3 ? 1 : -1) * (width / 2 - radius);
+        const double y = (corner < 2 ? 1 : -1) * (depth / 2 - radius);
+        for (int k = 0; k <= facets; ++k) {
+            const double angle = 1.5707963267948966 * (corner + static_cast<double>(k) / facets);
+            outline.push_back(Vec3(x + radius * std::cos(angle), y + radius * std::sin(angle), 0));
+        }
+    }
+    const int n = static_cast<int>(outline.size());
+    PolygonSoup soup;
+    for (double z : {0.0, height})
+        for (const Vec3& p : outline) soup.positions.push_back(rotation * (p + Vec3(0, 0, z)) + Vec3(3, -1, 2));
+    std::vector<int> face_of_triangle;
+    auto add = [&](std::vector<int> polygon, int face) {
+        soup.add_polygon(polygon.data(), polygon.size());
+        face_of_triangle.insert(face_of_triangle.end(), polygon.size() - 2, face);
+    };
+    // Outline point i is the k-th of corner i / 11; the quad from i to i + 1 is a facet of
+    // that corner, or (k = 10) the side after it.
+    for (int i = 0; i < n; ++i) {
+        const int j = (i + 1) % n, corner = i / (facets + 1), k = i % (facets + 1);
+        add({i, j, n + j, n + i}, k == facets ? 4 + corner : corner);
+    }
+    std::vector<int> bottom, top;
+    for (int i = 0; i < n; ++i) bottom.push_back(n - 1 - i), top.push_back(n + i);
+    add(bottom, 8);
+    add(top, 9);
+    return {std::move(soup), std::move(face_of_triangle)};
+}
+
+TEST(CadExtraction, AHandfulOverASideAndTheFacetsBesideItParts) {
+    // Growing, a side's region (two long triangles) took the first facets of the coarse
+    // corners beside it. Fitted by a plane, as a handful is, its error was far too small for
+    // an insertion to pay, and beside the seam its faces' roughness counted as noise: the
+    // run ended with it, 3 or 4 regions of 9 or 10 over two true faces in each of 8 poses.
+    // Its coplanar pieces now part at the stop, and the facets join their corners: none in
+    // 6 poses. In the other two a corner is still split between the sides beside it, each
+    // part too large for a handful (9 regions, 2 over two faces).
+    SplitMix64 rng(17);
+    int exact_poses = 0;
+    const auto uniform = [&] { return static_cast<double>(rng.below(1u << 20)) / (1u << 20); };
+    for (int pose = 0; pose < 8; ++pose) {
+        const Vec3 axis = Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalized();
+        const LabelledSoup truth = rounded_prism(Eigen::AngleAxisd(6.28 * uniform(), axis).toRotationMatrix());
+        const Mesh prism = build_mesh(truth.soup);
+        const Result r = test::approximate(prism, counted(0));
+        std::map<int, std::set<int>> faces_in;  // region → the true faces it holds
+        for (int f = 0; f < static_cast<int>(prism.face_count()); ++f)
+            faces_in[r.face_labels[f]].insert(truth.face_of_triangle[prism.source_face[f]]);
+        int over_two = 0;
+        for (const auto& [region, faces] : faces_in) over_two += faces.size() > 1;
+        EXPECT_LE(over_two, 2) << "pose " << pose;
+        exact_poses += over_two == 0 && r.proxies.size() == 10;
+    }
+    EXPECT_GE(exact_poses, 6);
+}
+
 TEST(CadExtraction, ACoarseExportsSmallFacesMakeItExact) {
     // abc_round_cap.stl: a notch in its rim is six faces of two to six triangles. Merged into
     // their neighbours at least cost, they bent the inner disc into an elliptic paraboloid
@@ -1204,7 +1268,7 @@ TEST(CadExtraction, BandsAndStripsOneFacetAcrossAreTheSurfacesTheirEdgesLieOn) {
     EXPECT_GE(planes, 7);
 }
 
-TEST(CadExtraction, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
+TEST(CadExtractionHeavy, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
     const std::pair<const char*, int> meshes[] = {
         {"fandisk.off", 22}, {"joint.off", 30},          {"csg.off", 10},          {"block.off", 20},
         {"casting.off", 30}, {"pinion.off", 30},         {"cylinder_capped.off", 3}, {"abc_pipe_junction.stl", 20},
@@ -1223,7 +1287,7 @@ TEST(CadExtraction, SharedMeshesAtThePapersCountsHaveNoTwoPartRegion) {
     }
 }
 
-TEST(CadExtraction, SharedCadMeshesWithTheAutomaticCountHaveNoTwoPartRegion) {
+TEST(CadExtractionHeavy, SharedCadMeshesWithTheAutomaticCountHaveNoTwoPartRegion) {
     for (const char* name : {"fandisk.off", "joint.off", "block.off", "casting.off", "pinion.off", "cylinder_capped.off",
                              "abc_pipe_junction.stl", "abc_round_cap.stl"}) {
         SCOPED_TRACE(name);
@@ -1335,7 +1399,7 @@ TEST(CadExtraction, UnderNoiseAQuadricBentThroughACreaseIsTwoPlanes) {
     });
 }
 
-TEST(CadExtraction, AFinelyMeshedPartUnderNoiseOfItsFacesWidthStaysAFewRegions) {
+TEST(CadExtractionHeavy, AFinelyMeshedPartUnderNoiseOfItsFacesWidthStaysAFewRegions) {
     // abc_pipe_junction.stl (37K faces) with noise along its normals of 0.2 % of its
     // diagonal, about the width of its faces: every face's normal turned at random, false
     // creases everywhere (20 000, against 1 100 clean) cut the part into 3 300 charts, and
@@ -1401,7 +1465,7 @@ TEST(CadExtraction, CrossingHolesStayTwoRegionsWithTheAutomaticCount) {
     EXPECT_LT(*largest / *smallest, 1.01) << "the holes are of one radius";
 }
 
-TEST(CadExtraction, TheSeedPicksSeedFacesAndTheSameSeedGivesTheSameLabels) {
+TEST(CadExtractionHeavy, TheSeedPicksSeedFacesAndTheSameSeedGivesTheSameLabels) {
     const Mesh bunny = read_mesh_file(test::shared_mesh("bunny_closed.off"));
     const Result a = test::approximate(bunny, counted(20)), again = test::approximate(bunny, counted(20));
     EXPECT_EQ(a.labels, again.labels);
@@ -1464,7 +1528,7 @@ TEST(CadExtraction, NoProxyStaysStuckOnAHandfulOfFaces) {
     for (const ProxyResult& p : r.proxies) EXPECT_GE(p.faces, 10) << "homer region " << p.id;
 }
 
-TEST(CadExtraction, AFineTurnedPartWithTheAutomaticCountIsItsSixSurfaces) {
+TEST(CadExtractionHeavy, AFineTurnedPartWithTheAutomaticCountIsItsSixSurfaces) {
     // At 320K faces the sphere's region once took a strip of the tangent cylinder below it
     // (its quadric bent, RMS under the `precision` floor) and left a 43-face region of the
     // exact sphere at the pole: 7 regions, growth ended as fitted. The pole's proxy explains

@@ -384,6 +384,7 @@ void Lloyd::stop(StopReason reason) {
     release_minor_parts();
     const std::uint64_t unrepaired = partition_hash();
     ensure_valid();
+    part_handfuls();
     // The repair splits and merges without Lloyd, so its regions keep boundaries no Lloyd
     // stage drew. A stage lets them settle, the repair runs again (the stage may bend a
     // region over two parts anew), and the repaired partition of less energy stands
@@ -1545,6 +1546,109 @@ void Lloyd::release_minor_parts() {
         restore(before);
         if (exact_) faces = faces_by_region();  // the moved faces are back where they were
     }
+}
+
+bool Lloyd::part_handfuls() {
+    // Growth ends where insertions stop paying, and Lloyd's flooding may leave a handful of
+    // faces (too few for a quadric: a plane) over two or three planes of an exact
+    // tessellation: a wall's triangle and the triangle of a 0.4 mm chamfer beside it, bent
+    // by 45°, below the crease angle (a Voron PSU bracket); a wall and the first facets of
+    // the arc it runs into (Mendel90's x-end clamp: 98 % of its error). Its error is far too
+    // small for an insertion to pay, and beside a seam its faces' roughness counts as noise,
+    // yet no surface of the part lies there. Its pieces of exactly coplanar faces part, and
+    // join the neighbours they lie on one surface with (join_parted).
+    // A coarse corner one facet tall is a handful of facets too, each a plane, whose
+    // vertices determine no quadric (two rings of them lie on many): parted, no piece joins
+    // anything, and each facet would be a region (a plate assembly's rims: 45 regions for
+    // its 39 faces). So a handful stays parted only if a piece of it joined, or was joined
+    // by, another region.
+    if (options_.proxies > 0 || options_.tolerance > 0) return false;
+    const Snapshot before{labels_, proxies_, energy_};
+    const std::vector<char> joined = part_and_join([](int) { return true; });
+    restore(before);
+    if (std::find(joined.begin(), joined.end(), 1) == joined.end()) return false;
+    part_and_join([&](int handful) { return joined[handful] != 0; });
+    return true;
+}
+
+std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted) {
+    const DualGraph& g = model_.graph;
+    RegionFaces faces = faces_by_region();
+    const int count = static_cast<int>(proxies_.size());
+    std::vector<char> joined(count, 0);
+    // Per region, the handful it was parted from, or -1.
+    std::vector<int> origin(count, -1);
+    // Where the file is exact: each face lies in one plane with a neighbour (as for
+    // Features::exact, which asks it of half the mesh's faces). Not so beside a smooth
+    // surface's faces, nor under noise.
+    auto flat = [&](int f) {
+        for (int e = g.begin(f); e < g.end(f); ++e)
+            if (exactly_coplanar(model_, f, g.neighbor[e])) return true;
+        return false;
+    };
+    std::vector<int> piece(model_.face_count(), -1);
+    for (int i = 0; i < count; ++i) {
+        // Not a handful whose vertices determine a quadric they lie on: a surface after all.
+        if (proxies_[i].faces >= options_.min_quadric_faces || faces[i].size() < 2 || !admitted(i) ||
+            !std::all_of(faces[i].begin(), faces[i].end(), flat) ||
+            exactly_planar(fit_plane(proxies_[i].moments).mean_squared, 0) || exact_region(i, faces).determined)
+            continue;
+        int pieces = 0;
+        for (int f : faces[i])
+            if (piece[f] < 0)
+                label_component(g, f, pieces++, piece, [&](int h) { return labels_[h] == i; },
+                                [&](int h, int link) { return exactly_coplanar(model_, h, g.neighbor[link]); });
+        std::vector<double> area(pieces, 0.0);
+        for (int f : faces[i]) area[piece[f]] += model_.areas[f];
+        const int largest = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
+        std::vector<int> region_of(pieces, -1);
+        region_of[largest] = i, origin[i] = i;
+        for (int f : faces[i]) {
+            int& to = region_of[piece[f]];
+            if (to < 0) to = static_cast<int>(proxies_.size()), add_proxy(f), origin.push_back(i);
+            labels_[f] = to;
+        }
+        for (int f : faces[i]) piece[f] = -1;
+    }
+    std::vector<char> changed(origin.size());
+    for (std::size_t r = 0; r < origin.size(); ++r) changed[r] = origin[r] >= 0;
+    if (std::find(changed.begin(), changed.end(), 1) == changed.end()) return joined;
+    refit_regions(model_, labels_, options_, proxies_, changed);
+    evaluate();
+    // A parted region joins the adjacent one whose union with it is one exact plane, or
+    // whose surface holds the vertices of both (vertex_surface), the least costly; the last
+    // first, as a merge renumbers the regions after the one it removes.
+    for (bool merged = true; merged;) {
+        merged = false;
+        faces = faces_by_region();
+        FaceErrors errors;
+        errors.reset(model_, quadrics_of(proxies_));
+        for (int r = static_cast<int>(origin.size()) - 1; r >= 0 && !merged; --r) {
+            if (origin[r] < 0) continue;
+            std::set<int> neighbours;
+            for (int f : faces[r])
+                for (int e = g.begin(f); e < g.end(f); ++e)
+                    if (labels_[g.neighbor[e]] != r) neighbours.insert(labels_[g.neighbor[e]]);
+            int to = -1;
+            double least = std::numeric_limits<double>::infinity();
+            for (int j : neighbours) {
+                double error = 0;
+                for (int f : faces[r]) error += errors(f, j);
+                if (!(error < least)) continue;
+                Moments both = proxies_[j].moments;
+                add_to(both, proxies_[r].moments);
+                if (exactly_planar(fit_plane(both).mean_squared, 0) || vertex_surface({j, r}, faces).one)
+                    least = error, to = j;
+            }
+            if (to < 0) continue;
+            joined[origin[r]] = 1;
+            if (origin[to] >= 0) joined[origin[to]] = 1;
+            merge_into(to, {r}, fit_union({to, r}).fit);
+            origin.erase(origin.begin() + r);
+            merged = true;
+        }
+    }
+    return joined;
 }
 
 std::vector<int> Lloyd::off_plane_faces(const std::vector<int>& region, std::vector<int>& piece) const {

@@ -329,6 +329,14 @@ private:
     // At the stop: the faces on a region's second part, too small to split off, to
     // neighbouring regions that explain them as well (see lloyd.cpp).
     void release_minor_parts();
+    // With the automatic count, at the stop: a handful of faces of an exact tessellation on
+    // more than one plane parts into its pieces of exactly coplanar faces, which join the
+    // neighbours they lie on one surface with or stay regions of their own, if any piece
+    // joins (see lloyd.cpp). Whether any handful parted.
+    bool part_handfuls();
+    // Parts the handfuls `admitted` (by region) takes, as part_handfuls does, and joins the
+    // pieces; per region before, whether a piece of it joined another region or was joined.
+    std::vector<char> part_and_join(const std::function<bool(int)>& admitted);
     // On an exact export: the faces of `region` off the plane of its largest piece of exactly
     // coplanar faces, when that holds most of its area (else none). `piece`: per face of the
     // model, all -1; left so.
