@@ -1131,6 +1131,24 @@ TEST(CadExtraction, AHandfulOverASideAndTheFacetsBesideItParts) {
     EXPECT_GE(exact_poses, 6);
 }
 
+TEST(CadExtraction, ACoarseLBracketsLegLeavesTheQuadricOfItsFillet) {
+    // The L-bracket exported coarsely (detail 0.25): growth ended with a leg's face, an exact
+    // plane, and the fillet's facets beside it in one curved region, 8 regions of 9
+    // (accuracy 0.9375 at seed offsets 0 and 1). At the stop, a piece of exactly coplanar
+    // faces that is no strip now leaves such a region when that lowers its error.
+    for (const CorpusCase& c : cad_corpus({"l_bracket"})) {
+        if (c.variant != "clean") continue;
+        PartOptions options = c.options;
+        options.detail = 0.25;
+        const Part part = make_part(c.part, options);
+        for (std::uint64_t offset : {0, 1}) {
+            const Outcome automatic = run(part, counted(0, c.options.seed + offset));
+            EXPECT_EQ(automatic.regions, static_cast<int>(part.surfaces.size())) << "seed offset " << offset;
+            EXPECT_GE(automatic.accuracy, 0.99) << "seed offset " << offset;
+        }
+    }
+}
+
 TEST(CadExtraction, ACoarseExportsSmallFacesMakeItExact) {
     // abc_round_cap.stl: a notch in its rim is six faces of two to six triangles. Merged into
     // their neighbours at least cost, they bent the inner disc into an elliptic paraboloid

@@ -516,7 +516,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     std::vector<char> flat(n, 0);
     int flat_faces = 0;
     for (int f = 0; f < n; ++f) {
-        for (int e = g.begin(f); e < g.end(f) && !flat[f]; ++e) flat[f] = exactly_coplanar(model, f, g.neighbor[e]);
+        flat[f] = coplanar_with_a_neighbour(model, f);
         flat_faces += flat[f];
     }
     out.exact = n > 0 && 2 * flat_faces >= n;

@@ -133,6 +133,12 @@ bool exactly_coplanar(const Model& model, int f, int h) {
     return off_plane(f, nf.normalized(), h) <= kStoredPrecision && off_plane(h, nh.normalized(), f) <= kStoredPrecision;
 }
 
+bool coplanar_with_a_neighbour(const Model& model, int f) {
+    for (int e = model.graph.begin(f); e < model.graph.end(f); ++e)
+        if (exactly_coplanar(model, f, model.graph.neighbor[e])) return true;
+    return false;
+}
+
 Moments moments_of(const Model& model, const std::vector<int>& faces) {
     Moments sum{};
     for (int f : faces) add_to(sum, model.moments[f]);

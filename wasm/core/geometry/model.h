@@ -80,6 +80,8 @@ Model make_model(const Mesh& mesh);
 // Whether faces f and h lie in one plane to the stored precision (each within it of the
 // other's plane), which no noise leaves.
 bool exactly_coplanar(const Model& model, int f, int h);
+// Whether face f lies in one plane with a neighbour so (a face of an exact tessellation).
+bool coplanar_with_a_neighbour(const Model& model, int f);
 
 // Σ of the faces' moments.
 Moments moments_of(const Model& model, const std::vector<int>& faces);

@@ -384,6 +384,7 @@ void Lloyd::stop(StopReason reason) {
     release_minor_parts();
     const std::uint64_t unrepaired = partition_hash();
     ensure_valid();
+    release_planes();
     part_handfuls();
     // The repair splits and merges without Lloyd, so its regions keep boundaries no Lloyd
     // stage drew. A stage lets them settle, the repair runs again (the stage may bend a
@@ -1548,6 +1549,63 @@ void Lloyd::release_minor_parts() {
     }
 }
 
+bool Lloyd::release_planes() {
+    // A region of a curved quadric may hold a plane face of an exact tessellation and the
+    // strip of facets bending off it below the crease angle (a plate's top and the 45°
+    // chamfer along its edge, one cylinder 1.5 % of the size off its faces on Voron's rs25
+    // PSU bracket): growth ended before an insertion into it paid, as for handfuls
+    // (part_handfuls). Each piece of exactly coplanar faces that is no strip (a face with all
+    // its neighbours in the piece: not the facet column of a curved surface, which a strip
+    // one facet wide is) leaves as a region of its own, unless the region's vertices
+    // determine a quadric they lie on. The release stands if the region and the pieces
+    // then leave less error than the region did: what stays may be strips that fit worse
+    // without the plane.
+    if (options_.proxies > 0 || options_.tolerance > 0) return false;
+    const RegionFaces faces = faces_by_region();
+    const int count = static_cast<int>(proxies_.size());
+    // Where the file is exact: each face lies in one plane with a neighbour (as
+    // Features::exact asks of half the mesh's faces); not so beside a smooth surface's
+    // faces, nor under noise.
+    auto flat = [&](int f) { return coplanar_with_a_neighbour(model_, f); };
+    std::vector<int> piece(model_.face_count(), -1);
+    bool released = false;
+    for (int i = 0; i < count; ++i) {
+        if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() ||
+            !std::all_of(faces[i].begin(), faces[i].end(), flat) || exact_region(i, faces).determined)
+            continue;
+        const int pieces = coplanar_pieces(faces[i], piece);
+        std::vector<std::vector<int>> members(pieces);
+        std::vector<double> area(pieces, 0.0);
+        for (int f : faces[i]) members[piece[f]].push_back(f), area[piece[f]] += model_.areas[f];
+        std::vector<char> leaves(pieces, 0);
+        for (int k = 0; k < pieces; ++k)
+            leaves[k] = !is_strip(model_, members[k], 0, [&](int f) { return labels_[f] == i && piece[f] == k; });
+        for (int f : faces[i]) piece[f] = -1;
+        // A region of plane faces only keeps its largest.
+        if (std::all_of(leaves.begin(), leaves.end(), [](char c) { return c != 0; }))
+            leaves[std::max_element(area.begin(), area.end()) - area.begin()] = 0;
+        if (std::find(leaves.begin(), leaves.end(), 1) == leaves.end()) continue;
+        const Snapshot before{labels_, proxies_, energy_};
+        std::vector<char> changed(proxies_.size(), 0);
+        changed[i] = 1;
+        for (int k = 0; k < pieces; ++k) {
+            if (!leaves[k]) continue;
+            const int to = static_cast<int>(proxies_.size());
+            add_proxy(members[k].front());
+            changed.push_back(1);
+            for (int f : members[k]) labels_[f] = to;
+        }
+        refit_regions(model_, labels_, options_, proxies_, changed);
+        evaluate(&changed);
+        double after = 0;
+        for (std::size_t r = 0; r < changed.size(); ++r)
+            if (changed[r]) after += proxies_[r].error;
+        if (after < before.proxies[i].error) released = true;
+        else restore(before);
+    }
+    return released;
+}
+
 bool Lloyd::part_handfuls() {
     // Growth ends where insertions stop paying, and Lloyd's flooding may leave a handful of
     // faces (too few for a quadric: a plane) over two or three planes of an exact
@@ -1578,14 +1636,7 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
     std::vector<char> joined(count, 0);
     // Per region, the handful it was parted from, or -1.
     std::vector<int> origin(count, -1);
-    // Where the file is exact: each face lies in one plane with a neighbour (as for
-    // Features::exact, which asks it of half the mesh's faces). Not so beside a smooth
-    // surface's faces, nor under noise.
-    auto flat = [&](int f) {
-        for (int e = g.begin(f); e < g.end(f); ++e)
-            if (exactly_coplanar(model_, f, g.neighbor[e])) return true;
-        return false;
-    };
+    auto flat = [&](int f) { return coplanar_with_a_neighbour(model_, f); };
     std::vector<int> piece(model_.face_count(), -1);
     for (int i = 0; i < count; ++i) {
         // Not a handful whose vertices determine a quadric they lie on: a surface after all.
@@ -1593,11 +1644,7 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
             !std::all_of(faces[i].begin(), faces[i].end(), flat) ||
             exactly_planar(fit_plane(proxies_[i].moments).mean_squared, 0) || exact_region(i, faces).determined)
             continue;
-        int pieces = 0;
-        for (int f : faces[i])
-            if (piece[f] < 0)
-                label_component(g, f, pieces++, piece, [&](int h) { return labels_[h] == i; },
-                                [&](int h, int link) { return exactly_coplanar(model_, h, g.neighbor[link]); });
+        const int pieces = coplanar_pieces(faces[i], piece);
         std::vector<double> area(pieces, 0.0);
         for (int f : faces[i]) area[piece[f]] += model_.areas[f];
         const int largest = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
@@ -1651,15 +1698,20 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
     return joined;
 }
 
-std::vector<int> Lloyd::off_plane_faces(const std::vector<int>& region, std::vector<int>& piece) const {
-    // The region's pieces of exactly coplanar neighbours, by area.
+int Lloyd::coplanar_pieces(const std::vector<int>& region, std::vector<int>& piece) const {
     const DualGraph& g = model_.graph;
     const int label = labels_[region.front()];
-    auto in_region = [&](int f) { return labels_[f] == label; };
-    auto coplanar = [&](int f, int link) { return exactly_coplanar(model_, f, g.neighbor[link]); };
     int pieces = 0;
     for (int f : region)
-        if (piece[f] < 0) label_component(g, f, pieces++, piece, in_region, coplanar);
+        if (piece[f] < 0)
+            label_component(g, f, pieces++, piece, [&](int h) { return labels_[h] == label; },
+                            [&](int h, int link) { return exactly_coplanar(model_, h, g.neighbor[link]); });
+    return pieces;
+}
+
+std::vector<int> Lloyd::off_plane_faces(const std::vector<int>& region, std::vector<int>& piece) const {
+    // The region's pieces, by area.
+    const int pieces = coplanar_pieces(region, piece);
     std::vector<double> area(pieces, 0.0);
     double total = 0;
     for (int f : region) area[piece[f]] += model_.areas[f], total += model_.areas[f];

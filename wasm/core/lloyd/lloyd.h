@@ -334,6 +334,11 @@ private:
     // neighbours they lie on one surface with or stay regions of their own, if any piece
     // joins (see lloyd.cpp). Whether any handful parted.
     bool part_handfuls();
+    // With the automatic count, at the stop, before part_handfuls: a region fitted by a
+    // curved quadric over faces of an exact tessellation lets its plane faces (pieces of
+    // exactly coplanar faces that are no strips) go, when that leaves less error (see
+    // lloyd.cpp). Whether any did.
+    bool release_planes();
     // Parts the handfuls `admitted` (by region) takes, as part_handfuls does, and joins the
     // pieces; per region before, whether a piece of it joined another region or was joined.
     std::vector<char> part_and_join(const std::function<bool(int)>& admitted);
@@ -341,6 +346,10 @@ private:
     // coplanar faces, when that holds most of its area (else none). `piece`: per face of the
     // model, all -1; left so.
     std::vector<int> off_plane_faces(const std::vector<int>& region, std::vector<int>& piece) const;
+    // Labels the faces of `region` (one region's, not empty) in `piece` (per face of the
+    // model, -1 where not yet labelled) by their pieces of exactly coplanar neighbours, from
+    // 0; returns how many.
+    int coplanar_pieces(const std::vector<int>& region, std::vector<int>& piece) const;
     // Splits the invalid region of largest error (`plane_pairs`: the region on a plane pair).
     bool split_invalid(bool plane_pairs);
     // split_invalid within the split budget, and not from a partition split from before.
