@@ -1560,18 +1560,14 @@ bool Lloyd::release_planes() {
     // determine a quadric they lie on. The release stands if the region and the pieces
     // then leave less error than the region did: what stays may be strips that fit worse
     // without the plane.
-    if (options_.proxies > 0 || options_.tolerance > 0) return false;
+    if (!automatic_count()) return false;
     const RegionFaces faces = faces_by_region();
     const int count = static_cast<int>(proxies_.size());
-    // Where the file is exact: each face lies in one plane with a neighbour (as
-    // Features::exact asks of half the mesh's faces); not so beside a smooth surface's
-    // faces, nor under noise.
-    auto flat = [&](int f) { return coplanar_with_a_neighbour(model_, f); };
     std::vector<int> piece(model_.face_count(), -1);
     bool released = false;
     for (int i = 0; i < count; ++i) {
         if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() ||
-            !std::all_of(faces[i].begin(), faces[i].end(), flat) || exact_region(i, faces).determined)
+            !on_exact_faces(faces[i]) || exact_region(i, faces).determined)
             continue;
         const int pieces = coplanar_pieces(faces[i], piece);
         std::vector<std::vector<int>> members(pieces);
@@ -1614,13 +1610,13 @@ bool Lloyd::part_handfuls() {
     // the arc it runs into (Mendel90's x-end clamp: 98 % of its error). Its error is far too
     // small for an insertion to pay, and beside a seam its faces' roughness counts as noise,
     // yet no surface of the part lies there. Its pieces of exactly coplanar faces part, and
-    // join the neighbours they lie on one surface with (join_parted).
+    // join the neighbours they lie on one surface with (part_and_join).
     // A coarse corner one facet tall is a handful of facets too, each a plane, whose
     // vertices determine no quadric (two rings of them lie on many): parted, no piece joins
     // anything, and each facet would be a region (a plate assembly's rims: 45 regions for
     // its 39 faces). So a handful stays parted only if a piece of it joined, or was joined
     // by, another region.
-    if (options_.proxies > 0 || options_.tolerance > 0) return false;
+    if (!automatic_count()) return false;
     const Snapshot before{labels_, proxies_, energy_};
     const std::vector<char> joined = part_and_join([](int) { return true; });
     restore(before);
@@ -1636,12 +1632,11 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
     std::vector<char> joined(count, 0);
     // Per region, the handful it was parted from, or -1.
     std::vector<int> origin(count, -1);
-    auto flat = [&](int f) { return coplanar_with_a_neighbour(model_, f); };
     std::vector<int> piece(model_.face_count(), -1);
     for (int i = 0; i < count; ++i) {
         // Not a handful whose vertices determine a quadric they lie on: a surface after all.
         if (proxies_[i].faces >= options_.min_quadric_faces || faces[i].size() < 2 || !admitted(i) ||
-            !std::all_of(faces[i].begin(), faces[i].end(), flat) ||
+            !on_exact_faces(faces[i]) ||
             exactly_planar(fit_plane(proxies_[i].moments).mean_squared, 0) || exact_region(i, faces).determined)
             continue;
         const int pieces = coplanar_pieces(faces[i], piece);
@@ -1696,6 +1691,10 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
         }
     }
     return joined;
+}
+
+bool Lloyd::on_exact_faces(const std::vector<int>& faces) const {
+    return std::all_of(faces.begin(), faces.end(), [&](int f) { return coplanar_with_a_neighbour(model_, f); });
 }
 
 int Lloyd::coplanar_pieces(const std::vector<int>& region, std::vector<int>& piece) const {

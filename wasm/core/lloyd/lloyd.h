@@ -232,9 +232,9 @@ private:
     void evaluate(const std::vector<char>* changed = nullptr);
     std::uint64_t partition_hash() const;
     // Growing: with the automatic count, and at a fixed count while regrowing (regrowth_goes_on).
-    bool automatic() const {
-        return (options_.proxies == 0 && options_.tolerance == 0) || regrowth_ == Regrowth::growing;
-    }
+    bool automatic() const { return automatic_count() || regrowth_ == Regrowth::growing; }
+    // The user's choice of the automatic count (no proxy count, no tolerance).
+    bool automatic_count() const { return options_.proxies == 0 && options_.tolerance == 0; }
     // The count to reach, 0 while growing as the automatic count does.
     int target() const { return regrowth_ == Regrowth::growing ? 0 : options_.proxies; }
     // Whether a stop at a fixed count for `reason` first grows past the count and merges back.
@@ -350,6 +350,10 @@ private:
     // model, -1 where not yet labelled) by their pieces of exactly coplanar neighbours, from
     // 0; returns how many.
     int coplanar_pieces(const std::vector<int>& region, std::vector<int>& piece) const;
+    // Whether each of `faces` lies in one plane with a neighbour (coplanar_with_a_neighbour):
+    // faces of an exact tessellation, as Features::exact asks of half the mesh's; not so
+    // beside a smooth surface's faces, nor under noise.
+    bool on_exact_faces(const std::vector<int>& faces) const;
     // Splits the invalid region of largest error (`plane_pairs`: the region on a plane pair).
     bool split_invalid(bool plane_pairs);
     // split_invalid within the split budget, and not from a partition split from before.
