@@ -1659,14 +1659,17 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
     evaluate();
     // A parted region joins the adjacent one whose union with it is one exact plane, or
     // whose surface holds the vertices of both (vertex_surface), the least costly; the last
-    // first, as a merge renumbers the regions after the one it removes.
+    // first, as a merge renumbers the regions after the one it removes. A region found to
+    // join nothing is settled until a merge grows one of its neighbours: only that changes
+    // what it could join (Voron's hubbed gear, 320 joins: its Lloyd stage 4.0 → 3.0 s).
+    std::vector<char> settled(origin.size(), 0);
     for (bool merged = true; merged;) {
         merged = false;
         faces = faces_by_region();
         FaceErrors errors;
         errors.reset(model_, quadrics_of(proxies_));
         for (int r = static_cast<int>(origin.size()) - 1; r >= 0 && !merged; --r) {
-            if (origin[r] < 0) continue;
+            if (origin[r] < 0 || settled[r]) continue;
             std::set<int> neighbours;
             for (int f : faces[r])
                 for (int e = g.begin(f); e < g.end(f); ++e)
@@ -1682,11 +1685,19 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
                 if (exactly_planar(fit_plane(both).mean_squared, 0) || vertex_surface({j, r}, faces).one)
                     least = error, to = j;
             }
-            if (to < 0) continue;
+            if (to < 0) {
+                settled[r] = 1;
+                continue;
+            }
             joined[origin[r]] = 1;
             if (origin[to] >= 0) joined[origin[to]] = 1;
             merge_into(to, {r}, fit_union({to, r}).fit);
             origin.erase(origin.begin() + r);
+            settled.erase(settled.begin() + r);
+            for (int f : faces[to])
+                for (int e = g.begin(f); e < g.end(f); ++e) settled[labels_[g.neighbor[e]]] = 0;
+            for (int f : faces[r])
+                for (int e = g.begin(f); e < g.end(f); ++e) settled[labels_[g.neighbor[e]]] = 0;
             merged = true;
         }
     }
