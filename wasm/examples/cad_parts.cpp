@@ -1300,6 +1300,43 @@ Part rounded_plate(const PartOptions& o) {
     return b.finish("rounded_plate");
 }
 
+// A block whose back steps in by a tenth of its depth through a 37° chamfer (below the
+// crease angle: one chart holds the two walls and the chamfer), each wall meshed as an
+// export meshes a side that other features cut, in quads of two full-height triangles
+// (five and ten of them), the chamfer one quad: three faces of strips whose vertices lie on
+// lines, on many quadrics together; 8 faces.
+Part stepped_block(const PartOptions& o) {
+    PartBuilder b(o);
+    const double W = 1.0, D = 0.5, step = 0.05, run = step * 4 / 3, H = 0.19, x_step = 0.45;
+    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
+    const int top = b.surface(plane({0, 0, H}, Vec3::UnitZ()));
+    const int front = b.surface(plane({0, 0, 0}, -Vec3::UnitY()));
+    const int right = b.surface(plane({W, 0, 0}, Vec3::UnitX()));
+    const int back_low = b.surface(plane({W, D - step, 0}, Vec3::UnitY()));
+    const int chamfer = b.surface(plane({x_step + run, D - step, 0}, Vec3(step, run, 0).normalized()));
+    const int back_high = b.surface(plane({0, D, 0}, Vec3::UnitY()));
+    const int left = b.surface(plane({0, 0, 0}, -Vec3::UnitX()));
+    std::vector<Vec3> outline{{0, 0, 0}, {W, 0, 0}};
+    std::vector<int> label{front, right};
+    const int low = b.count(10), high = b.count(5);
+    for (int k = 0; k < low; ++k) {
+        outline.emplace_back(W - (W - x_step - run) * k / low, D - step, 0);
+        label.push_back(back_low);
+    }
+    outline.emplace_back(x_step + run, D - step, 0);
+    label.push_back(chamfer);
+    for (int k = 0; k < high; ++k) {
+        outline.emplace_back(x_step - x_step * k / high, D, 0);
+        label.push_back(back_high);
+    }
+    outline.emplace_back(0, D, 0);
+    label.push_back(left);
+    b.band(outline, at_height(outline, H), b.count(1), true, [&](int j) { return label[j]; });
+    b.fill(outline, Vec3(W / 2, D / 2, 0), b.count(2), bottom);
+    b.fill(at_height(outline, H), Vec3(W / 2, D / 2, H), b.count(2), top);
+    return b.finish("stepped_block");
+}
+
 }  // namespace
 
 std::vector<std::string> corpus_part_names() {
@@ -1324,7 +1361,8 @@ std::vector<std::string> part_names() {
     names.push_back("dish");
     names.push_back("rolled_sheet");
     names.push_back("countersunk_plate");
-    names.push_back("rounded_plate");  // last: a part's seed follows its place in this list
+    names.push_back("rounded_plate");
+    names.push_back("stepped_block");  // last: a part's seed follows its place in this list
     return names;
 }
 
@@ -1357,6 +1395,7 @@ Part make_part(const std::string& name, const PartOptions& options) {
     if (name == "dish") return dish(options);
     if (name == "rolled_sheet") return rolled_sheet(options);
     if (name == "rounded_plate") return rounded_plate(options);
+    if (name == "stepped_block") return stepped_block(options);
     throw std::invalid_argument("unknown part '" + name + "'");
 }
 

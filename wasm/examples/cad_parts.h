@@ -52,8 +52,9 @@ struct PartOptions {
 // 45°), domed_cylinder (a sphere meeting a cylinder at 34°), angled_cut (a bar cut at 50°: its
 // crease runs out half way round), bowl (two concentric spheres 4 % of their radius apart),
 // dish (a paraboloid of revolution on a disc), rolled_sheet, countersunk_plate (a cone and a
-// bore one facet row each, meeting at 45°) and rounded_plate (sides of two triangles between
-// corners of 11 facets).
+// bore one facet row each, meeting at 45°), rounded_plate (sides of two triangles between
+// corners of 11 facets) and stepped_block (two walls and the chamfer between them, each in
+// quads of full-height triangles).
 std::vector<std::string> part_names();
 std::vector<std::string> corpus_part_names();
 // Throws std::invalid_argument for an unknown name.
