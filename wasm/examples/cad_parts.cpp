@@ -325,6 +325,17 @@ void bored_prism(PartBuilder& b, const std::vector<Vec3>& outline, const std::ve
     b.band(ring, outline, annulus_rows, true, bottom);
 }
 
+// A prism from z = 0 to `height` over a closed counter-clockwise outline at z = 0, its side
+// quad j (from point j to the next) on surface label[j], each side one row of two
+// full-height triangles, bottom and top fans from `inside` (and above it) as their planes.
+void flat_prism(PartBuilder& b, const std::vector<Vec3>& outline, const std::vector<int>& label, double height,
+                const Vec3& inside) {
+    const std::vector<Vec3> top = at_height(outline, height);
+    b.band(outline, top, b.count(1), true, [&](int j) { return label[j]; });
+    b.fill(outline, inside, b.count(2), b.surface(plane({0, 0, 0}, -Vec3::UnitZ())));
+    b.fill(top, inside + Vec3(0, 0, height), b.count(2), b.surface(plane({0, 0, height}, Vec3::UnitZ())));
+}
+
 // Where the ray from a slot's centre along unit u meets the slot: two half-circle ends of
 // radius r centred at ±a along x, joined by flat sides at ±r along y (a = 0: a circle).
 // `piece`: 0 the flat side below, 1 above, 2 the end to the right, 3 to the left.
@@ -1266,14 +1277,6 @@ Part rolled_sheet(const PartOptions& o) {
 // pocket is in a part), its sides one quad each too; 16 faces.
 Part rounded_plate(const PartOptions& o) {
     PartBuilder b(o);
-    // A prism from z = 0 to `height` over a closed counter-clockwise outline at z = 0, its
-    // quad j (from point j to the next) on surface label[j].
-    auto prism = [&](const std::vector<Vec3>& outline, const std::vector<int>& label, double height, const Vec3& inside) {
-        const std::vector<Vec3> top = at_height(outline, height);
-        b.band(outline, top, b.count(1), true, [&](int j) { return label[j]; });
-        b.fill(outline, inside, b.count(2), b.surface(plane({0, 0, 0}, -Vec3::UnitZ())));
-        b.fill(top, inside + Vec3(0, 0, height), b.count(2), b.surface(plane({0, 0, height}, Vec3::UnitZ())));
-    };
     auto direction = [](double angle) { return Vec3(portable::cos(angle), portable::sin(angle), 0); };
     const double W = 1.0, D = 0.6, T = 0.2, r = 0.1;
     const Vec3 centres[4] = {{W - r, r, 0}, {W - r, D - r, 0}, {r, D - r, 0}, {r, r, 0}};
@@ -1291,12 +1294,12 @@ Part rounded_plate(const PartOptions& o) {
         outline.push_back(centres[k] + r * direction(kPi / 2 * k));
         label.push_back(side);
     }
-    prism(outline, label, T, {W / 2, D / 2, 0});
+    flat_prism(b, outline, label, T, {W / 2, D / 2, 0});
     const double x0 = -1, y0 = -6, X = 7, Y = 5;
     const std::vector<Vec3> slab{{x0, y0, 0}, {x0 + X, y0, 0}, {x0 + X, y0 + Y, 0}, {x0, y0 + Y, 0}};
     std::vector<int> sides;
     for (int k = 0; k < 4; ++k) sides.push_back(b.surface(plane(slab[k], direction(kPi / 2 * (k - 1)))));
-    prism(slab, sides, 0.5, {x0 + X / 2, y0 + Y / 2, 0});
+    flat_prism(b, slab, sides, 0.5, {x0 + X / 2, y0 + Y / 2, 0});
     return b.finish("rounded_plate");
 }
 
@@ -1308,8 +1311,6 @@ Part rounded_plate(const PartOptions& o) {
 Part stepped_block(const PartOptions& o) {
     PartBuilder b(o);
     const double W = 1.0, D = 0.5, step = 0.05, run = step * 4 / 3, H = 0.19, x_step = 0.45;
-    const int bottom = b.surface(plane({0, 0, 0}, -Vec3::UnitZ()));
-    const int top = b.surface(plane({0, 0, H}, Vec3::UnitZ()));
     const int front = b.surface(plane({0, 0, 0}, -Vec3::UnitY()));
     const int right = b.surface(plane({W, 0, 0}, Vec3::UnitX()));
     const int back_low = b.surface(plane({W, D - step, 0}, Vec3::UnitY()));
@@ -1331,9 +1332,7 @@ Part stepped_block(const PartOptions& o) {
     }
     outline.emplace_back(0, D, 0);
     label.push_back(left);
-    b.band(outline, at_height(outline, H), b.count(1), true, [&](int j) { return label[j]; });
-    b.fill(outline, Vec3(W / 2, D / 2, 0), b.count(2), bottom);
-    b.fill(at_height(outline, H), Vec3(W / 2, D / 2, H), b.count(2), top);
+    flat_prism(b, outline, label, H, {W / 2, D / 2, 0});
     return b.finish("stepped_block");
 }
 

@@ -1694,10 +1694,9 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
             merge_into(to, {r}, fit_union({to, r}).fit);
             origin.erase(origin.begin() + r);
             settled.erase(settled.begin() + r);
-            for (int f : faces[to])
-                for (int e = g.begin(f); e < g.end(f); ++e) settled[labels_[g.neighbor[e]]] = 0;
-            for (int f : faces[r])
-                for (int e = g.begin(f); e < g.end(f); ++e) settled[labels_[g.neighbor[e]]] = 0;
+            for (int grown : {to, r})
+                for (int f : faces[grown])
+                    for (int e = g.begin(f); e < g.end(f); ++e) settled[labels_[g.neighbor[e]]] = 0;
             merged = true;
         }
     }
