@@ -1556,15 +1556,17 @@ bool Lloyd::release_planes() {
     // PSU bracket): growth ended before an insertion into it paid, as for handfuls
     // (part_handfuls). Each piece of exactly coplanar faces that is no strip (a face with all
     // its neighbours in the piece: not the facet column of a curved surface, which a strip
-    // one facet wide is) leaves as a region of its own, unless the region's vertices
-    // determine a quadric they lie on. The release stands if the region and the pieces
-    // then leave less error than the region did: what stays may be strips that fit worse
-    // without the plane.
+    // one facet wide is) leaves as a region of its own, and so do both of two pieces that
+    // meet at an inflection, unless the region's vertices determine a quadric they lie on.
+    // The release stands if the region and the pieces then leave less error than the
+    // region did: what stays may be strips that fit worse without the plane. What it leaves
+    // or lets go may then join a neighbour, as a handful's pieces do.
     if (!automatic_count()) return false;
     const RegionFaces faces = faces_by_region();
     const int count = static_cast<int>(proxies_.size());
     std::vector<int> piece(model_.face_count(), -1);
     bool released = false;
+    std::vector<char> from_release(count, 0);  // per region, whether a release that stood made it
     for (int i = 0; i < count; ++i) {
         if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() ||
             !on_exact_faces(faces[i]) || exact_region(i, faces).determined)
@@ -1576,6 +1578,17 @@ bool Lloyd::release_planes() {
         std::vector<char> leaves(pieces, 0);
         for (int k = 0; k < pieces; ++k)
             leaves[k] = !is_strip(model_, members[k], 0, [&](int f) { return labels_[f] == i && piece[f] == k; });
+        // Two pieces, the smaller bending one way from the larger and the other way into the
+        // faces beyond it (below the crease angle): an inflection, which no conic section
+        // has, so the smaller is no column of an arc that goes on past the region (a coarse
+        // corner's, whose next column bends on the same way), and the two are exact planes
+        // that the quadric fits no better: both leave, strips or not (a step's wall one
+        // facet tall and the 37° chamfer at its end, fitted as one hyperboloid through the
+        // wall's two edges).
+        if (pieces == 2) {
+            const int smaller = area[0] < area[1] ? 0 : 1;
+            if (inflects(members[smaller], piece, 1 - smaller)) std::fill(leaves.begin(), leaves.end(), 1);
+        }
         for (int f : faces[i]) piece[f] = -1;
         // A region of plane faces only keeps its largest.
         if (std::all_of(leaves.begin(), leaves.end(), [](char c) { return c != 0; }))
@@ -1596,10 +1609,46 @@ bool Lloyd::release_planes() {
         double after = 0;
         for (std::size_t r = 0; r < changed.size(); ++r)
             if (changed[r]) after += proxies_[r].error;
-        if (after < before.proxies[i].error) released = true;
-        else restore(before);
+        if (after < before.proxies[i].error) {
+            released = true;
+            from_release.resize(proxies_.size(), 0);
+            for (std::size_t r = 0; r < changed.size(); ++r) from_release[r] = from_release[r] || changed[r];
+        } else {
+            restore(before);
+        }
     }
+    // A release may leave, or let go, another region's facet columns (a slot's wall and the
+    // first column of its rounded end: the wall leaves, and the column, an exact plane on
+    // its own, would stay a region the smoothing keeps): they join the region whose surface
+    // holds them, as a handful's pieces do. A handful, or one plane: parted, what stays of
+    // a coarse arc would be its facets one by one (Mendel90's x-end clamp: 50 regions to 101).
+    if (released)
+        part_joining([&](int r) {
+            return from_release[r] != 0 && (proxies_[r].faces < options_.min_quadric_faces ||
+                                            exactly_planar(fit_plane(proxies_[r].moments).mean_squared, 0));
+        });
     return released;
+}
+
+bool Lloyd::inflects(const std::vector<int>& faces, const std::vector<int>& piece, int from) const {
+    const DualGraph& g = model_.graph;
+    const int region = labels_[faces.front()];
+    int from_bends = 0, beyond_bends = 0;  // bit 1: convex seen, bit 2: concave
+    for (int f : faces) {
+        const Triangle& t = model_.triangles[f];
+        Vec3 normal = (model_.points[t[1]] - model_.points[t[0]]).cross(model_.points[t[2]] - model_.points[t[0]]);
+        // The filtered normal is oriented across the mesh, and a bend below the crease angle
+        // may turn it most of the way to the other face's.
+        if (normal.dot(features_.normals[f]) < 0) normal = -normal;
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            if (features_.crease[e] || exactly_coplanar(model_, f, h)) continue;
+            const int bend = (model_.barycentres[h] - model_.barycentres[f]).dot(normal) < 0 ? 1 : 2;
+            if (labels_[h] != region) beyond_bends |= bend;
+            else if (piece[h] == from) from_bends |= bend;
+        }
+    }
+    return (from_bends == 1 && beyond_bends == 2) || (from_bends == 2 && beyond_bends == 1);
 }
 
 bool Lloyd::part_handfuls() {
@@ -1617,11 +1666,19 @@ bool Lloyd::part_handfuls() {
     // its 39 faces). So a handful stays parted only if a piece of it joined, or was joined
     // by, another region.
     if (!automatic_count()) return false;
+    // A handful of one exact plane is a plane face of its own (a chamfer's two triangles).
+    return part_joining([&](int h) {
+        return proxies_[h].faces < options_.min_quadric_faces &&
+               !exactly_planar(fit_plane(proxies_[h].moments).mean_squared, 0);
+    });
+}
+
+bool Lloyd::part_joining(const std::function<bool(int)>& admitted) {
     const Snapshot before{labels_, proxies_, energy_};
-    const std::vector<char> joined = part_and_join([](int) { return true; });
+    const std::vector<char> joined = part_and_join(admitted);
     restore(before);
     if (std::find(joined.begin(), joined.end(), 1) == joined.end()) return false;
-    part_and_join([&](int handful) { return joined[handful] != 0; });
+    part_and_join([&](int region) { return joined[region] != 0; });
     return true;
 }
 
@@ -1630,14 +1687,12 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
     RegionFaces faces = faces_by_region();
     const int count = static_cast<int>(proxies_.size());
     std::vector<char> joined(count, 0);
-    // Per region, the handful it was parted from, or -1.
+    // Per region, the region it was parted from, or -1.
     std::vector<int> origin(count, -1);
     std::vector<int> piece(model_.face_count(), -1);
     for (int i = 0; i < count; ++i) {
-        // Not a handful whose vertices determine a quadric they lie on: a surface after all.
-        if (proxies_[i].faces >= options_.min_quadric_faces || faces[i].size() < 2 || !admitted(i) ||
-            !on_exact_faces(faces[i]) ||
-            exactly_planar(fit_plane(proxies_[i].moments).mean_squared, 0) || exact_region(i, faces).determined)
+        // Not one whose vertices determine a quadric they lie on: a surface after all.
+        if (faces[i].empty() || !admitted(i) || !on_exact_faces(faces[i]) || exact_region(i, faces).determined)
             continue;
         const int pieces = coplanar_pieces(faces[i], piece);
         std::vector<double> area(pieces, 0.0);
@@ -2099,7 +2154,10 @@ Lloyd::ExactRegion Lloyd::exact_region(int region, const RegionFaces& faces) con
         out.vertices = moments_of(s);
         const Fit fit = fit_taubin(out.vertices);
         out.exact = fit.mean_squared <= stored;
-        out.determined = out.exact && fit.next_mean_squared > 4 * s.tolerance * s.tolerance;
+        // No other quadric within the tessellation's deviation, nor within the precision the
+        // file stores: on strips of plane faces the deviation is 0, and rounding alone kept
+        // a second quadric 2e-9 off a step's wall and chamfer (an irregular stepped_block).
+        out.determined = out.exact && fit.next_mean_squared > std::max(4 * s.tolerance * s.tolerance, stored);
         return out;
     });
 }

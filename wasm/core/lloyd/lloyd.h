@@ -336,11 +336,20 @@ private:
     bool part_handfuls();
     // With the automatic count, at the stop, before part_handfuls: a region fitted by a
     // curved quadric over faces of an exact tessellation lets its plane faces (pieces of
-    // exactly coplanar faces that are no strips) go, when that leaves less error (see
-    // lloyd.cpp). Whether any did.
+    // exactly coplanar faces that are no strips, or both of two that meet at an inflection)
+    // go, when that leaves less error (see lloyd.cpp). Whether any did.
     bool release_planes();
-    // Parts the handfuls `admitted` (by region) takes, as part_handfuls does, and joins the
-    // pieces; per region before, whether a piece of it joined another region or was joined.
+    // Whether `faces` (a piece of coplanar faces of one region) bend one way from the faces
+    // of piece `from` (per face of the model, as coplanar_pieces labels them) and only the
+    // other way into the faces of other regions beyond them, over edges that are no creases.
+    bool inflects(const std::vector<int>& faces, const std::vector<int>& piece, int from) const;
+    // Parts the regions `admitted` takes and joins the pieces (part_and_join), keeping
+    // parted only those of which a piece joined another region or was joined. Whether any
+    // was.
+    bool part_joining(const std::function<bool(int)>& admitted);
+    // Parts the regions `admitted` takes (of exact faces, whose vertices determine no
+    // quadric) into their pieces of exactly coplanar faces and joins the pieces; per region
+    // before, whether a piece of it joined another region or was joined.
     std::vector<char> part_and_join(const std::function<bool(int)>& admitted);
     // On an exact export: the faces of `region` off the plane of its largest piece of exactly
     // coplanar faces, when that holds most of its area (else none). `piece`: per face of the
