@@ -54,17 +54,28 @@ Options counted(int proxies, std::uint64_t seed = 1) {
     return o;
 }
 
-// The corpus's case of this part and variant (its own pose, noise and seed), at its true count.
-// `seed_offset`: added to the corpus's seed for the method's choices (the same mesh).
+// The corpus's case of this part and variant (its own pose, noise and seed).
+CorpusCase corpus_case(const std::string& part_name, const std::string& variant) {
+    for (const CorpusCase& c : cad_corpus({part_name}))
+        if (c.variant == variant) return c;
+    throw std::invalid_argument("no corpus case " + part_name + " " + variant);
+}
+
+// The same case exported at another detail.
+CorpusCase corpus_case(const std::string& part_name, const std::string& variant, double detail) {
+    CorpusCase c = corpus_case(part_name, variant);
+    c.options.detail = detail;
+    return c;
+}
+
+// The corpus's case at its true count. `seed_offset`: added to the corpus's seed for the
+// method's choices (the same mesh).
 std::pair<Part, Outcome> corpus_case_at_true_count(const std::string& part_name, const std::string& variant,
                                                    std::uint64_t seed_offset = 0) {
-    for (const CorpusCase& c : cad_corpus({part_name}))
-        if (c.variant == variant) {
-            Part part = make_part(c.part, c.options);
-            Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed + seed_offset));
-            return {std::move(part), std::move(o)};
-        }
-    throw std::invalid_argument("no corpus case " + part_name + " " + variant);
+    const CorpusCase c = corpus_case(part_name, variant);
+    Part part = make_part(c.part, c.options);
+    Outcome o = run(part, counted(static_cast<int>(part.surfaces.size()), c.options.seed + seed_offset));
+    return {std::move(part), std::move(o)};
 }
 
 // Of the part's large faces (at least `large` of its triangles), how many there are and how
@@ -554,19 +565,16 @@ TEST(CadExtraction, AutomaticallyTheHandfulsMergedOneByOneDoNotCompoundTheirDrif
     // compounded and the finish merged on: 30 and 27 regions of 39 (0.983, 0.986 at seed
     // offsets 0 and 1). All the handfuls' stages together now have that room once, counted
     // from where the finish began.
-    for (const CorpusCase& c : cad_corpus({"plate_assembly"})) {
-        if (c.variant != "clean") continue;
-        PartOptions options = c.options;
-        options.random_pose = true, options.detail = 0.25;
-        const Part part = make_part(c.part, options);
-        const int faces = static_cast<int>(part.surfaces.size());
-        for (std::uint64_t offset : {0, 1}) {
-            SCOPED_TRACE("seed offset " + std::to_string(offset));
-            const Outcome automatic = run(part, counted(0, c.options.seed + offset));
-            EXPECT_NEAR(automatic.regions, faces, 0.15 * faces);
-            EXPECT_GE(automatic.accuracy, 0.987);
-            EXPECT_EQ(automatic.two_part, 0);
-        }
+    CorpusCase c = corpus_case("plate_assembly", "clean", 0.25);
+    c.options.random_pose = true;
+    const Part part = make_part(c.part, c.options);
+    const int faces = static_cast<int>(part.surfaces.size());
+    for (std::uint64_t offset : {0, 1}) {
+        SCOPED_TRACE("seed offset " + std::to_string(offset));
+        const Outcome automatic = run(part, counted(0, c.options.seed + offset));
+        EXPECT_NEAR(automatic.regions, faces, 0.15 * faces);
+        EXPECT_GE(automatic.accuracy, 0.987);
+        EXPECT_EQ(automatic.two_part, 0);
     }
 }
 
@@ -577,16 +585,12 @@ TEST(CadExtraction, OnACleanMeshNoMergeIsExcusedByTheDriftOfAStageWithoutIt) {
     // Lloyd stage from the same partition without it, which had drifted up as far: the
     // finish ended at 6 regions of 7, the spherical end and the cylinder beside it one
     // ellipsoid (accuracy 0.905). Only noise excuses such a drift.
-    for (const CorpusCase& c : cad_corpus({"stepped_shaft"})) {
-        if (c.variant != "irregular") continue;
-        PartOptions options = c.options;
-        options.detail = 3;
-        const Part part = make_part(c.part, options);
-        const Outcome automatic = run(part, counted(0, c.options.seed));
-        EXPECT_EQ(automatic.regions, static_cast<int>(part.surfaces.size()));
-        EXPECT_GE(automatic.accuracy, 0.99);
-        EXPECT_EQ(automatic.two_part, 0);
-    }
+    const CorpusCase c = corpus_case("stepped_shaft", "irregular", 3);
+    const Part part = make_part(c.part, c.options);
+    const Outcome automatic = run(part, counted(0, c.options.seed));
+    EXPECT_EQ(automatic.regions, static_cast<int>(part.surfaces.size()));
+    EXPECT_GE(automatic.accuracy, 0.99);
+    EXPECT_EQ(automatic.two_part, 0);
 }
 
 TEST(CadExtractionHeavy, UnderNoiseNoFlatConeHoldsBothFacesOfAPlate) {
@@ -1161,15 +1165,11 @@ TEST(CadExtraction, AStepsChamferLeavesItsWallButACoarseCornersColumnStays) {
     // column of a coarse corner beside it, whose next column bends on the same way, stay
     // one region (the plate assembly at detail 0.25: 55 regions for its 39 faces when any
     // two pieces left).
-    for (const CorpusCase& c : cad_corpus({"plate_assembly"})) {
-        if (c.variant != "clean") continue;
-        PartOptions options = c.options;
-        options.detail = 0.25;
-        const Part part = make_part(c.part, options);
-        const Outcome automatic = run(part, counted(0, c.options.seed));
-        EXPECT_LE(automatic.regions, static_cast<int>(1.15 * part.surfaces.size()));
-        EXPECT_GE(automatic.accuracy, 0.98);
-    }
+    const CorpusCase c = corpus_case("plate_assembly", "clean", 0.25);
+    const Part part = make_part(c.part, c.options);
+    const Outcome automatic = run(part, counted(0, c.options.seed));
+    EXPECT_LE(automatic.regions, static_cast<int>(1.15 * part.surfaces.size()));
+    EXPECT_GE(automatic.accuracy, 0.98);
 }
 
 TEST(CadExtraction, ACoarseLBracketsLegLeavesTheQuadricOfItsFillet) {
@@ -1177,16 +1177,12 @@ TEST(CadExtraction, ACoarseLBracketsLegLeavesTheQuadricOfItsFillet) {
     // plane, and the fillet's facets beside it in one curved region, 8 regions of 9
     // (accuracy 0.9375 at seed offsets 0 and 1). At the stop, a piece of exactly coplanar
     // faces that is no strip now leaves such a region when that lowers its error.
-    for (const CorpusCase& c : cad_corpus({"l_bracket"})) {
-        if (c.variant != "clean") continue;
-        PartOptions options = c.options;
-        options.detail = 0.25;
-        const Part part = make_part(c.part, options);
-        for (std::uint64_t offset : {0, 1}) {
-            const Outcome automatic = run(part, counted(0, c.options.seed + offset));
-            EXPECT_EQ(automatic.regions, static_cast<int>(part.surfaces.size())) << "seed offset " << offset;
-            EXPECT_GE(automatic.accuracy, 0.99) << "seed offset " << offset;
-        }
+    const CorpusCase c = corpus_case("l_bracket", "clean", 0.25);
+    const Part part = make_part(c.part, c.options);
+    for (std::uint64_t offset : {0, 1}) {
+        const Outcome automatic = run(part, counted(0, c.options.seed + offset));
+        EXPECT_EQ(automatic.regions, static_cast<int>(part.surfaces.size())) << "seed offset " << offset;
+        EXPECT_GE(automatic.accuracy, 0.99) << "seed offset " << offset;
     }
 }
 

@@ -55,8 +55,7 @@ std::vector<Vec3> face_normals(const Model& model) {
     const std::vector<signed char> sign = orientation(model);
     std::vector<Vec3> normal(n);
     for (int f = 0; f < n; ++f) {
-        const Triangle& t = model.triangles[f];
-        const Vec3 c = (model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]);
+        const Vec3 c = area_normal(model, f);
         const double length = c.norm();
         normal[f] = length > 0 ? Vec3(sign[f] * c / length) : Vec3::Zero();
     }

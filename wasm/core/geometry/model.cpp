@@ -88,10 +88,7 @@ Model make_model(const Mesh& mesh) {
     }
     model.graph = dual_graph(model.triangles, model.points);
     std::vector<Vec3> normal(n);
-    for (std::size_t f = 0; f < n; ++f) {
-        const Triangle& t = model.triangles[f];
-        normal[f] = (model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]).normalized();
-    }
+    for (std::size_t f = 0; f < n; ++f) normal[f] = area_normal(model, static_cast<int>(f)).normalized();
     DualGraph& g = model.graph;
     g.sagitta.resize(g.neighbor.size());
     for (std::size_t f = 0; f < n; ++f)
@@ -118,12 +115,13 @@ std::array<int, 2> shared_edge(const Model& model, int a, int b) {
     return k == 2 ? shared : std::array<int, 2>{-1, -1};
 }
 
+Vec3 area_normal(const Model& model, int f) {
+    const Triangle& t = model.triangles[f];
+    return (model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]);
+}
+
 bool exactly_coplanar(const Model& model, int f, int h) {
-    auto normal = [&](int a) {
-        const Triangle& t = model.triangles[a];
-        return Vec3((model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]));
-    };
-    const Vec3 nf = normal(f), nh = normal(h);
+    const Vec3 nf = area_normal(model, f), nh = area_normal(model, h);
     if (!(nf.squaredNorm() > 0 && nh.squaredNorm() > 0)) return false;
     auto off_plane = [&](int a, const Vec3& n, int b) {  // b's far vertex from a's plane
         double d = 0;

@@ -77,6 +77,10 @@ struct Model {
 
 Model make_model(const Mesh& mesh);
 
+// The cross product of face f's edges from its first vertex: along its normal (by its
+// winding), twice its area long.
+Vec3 area_normal(const Model& model, int f);
+
 // Whether faces f and h lie in one plane to the stored precision (each within it of the
 // other's plane), which no noise leaves.
 bool exactly_coplanar(const Model& model, int f, int h);

@@ -1453,7 +1453,7 @@ bool Lloyd::settle_pieces(const std::vector<int>& regions) {
             const bool told = static_cast<int>(faces[k].size()) >= options_.min_quadric_faces ||
                               face_of_its_own(faces[k]) ||
                               (exact_ && faces[k].size() > 1 &&
-                               exactly_planar(fit_plane(moments_of(model_, faces[k])).mean_squared, 0));
+                               on_one_exact_plane(moments_of(model_, faces[k])));
             if (to < 0 || (!explained && told)) {
                 to = static_cast<int>(proxies_.size());
                 add_proxy(faces[k].front());
@@ -1625,7 +1625,7 @@ bool Lloyd::release_planes() {
     if (released)
         part_joining([&](int r) {
             return from_release[r] != 0 && (proxies_[r].faces < options_.min_quadric_faces ||
-                                            exactly_planar(fit_plane(proxies_[r].moments).mean_squared, 0));
+                                            on_one_exact_plane(proxies_[r].moments));
         });
     return released;
 }
@@ -1635,8 +1635,7 @@ bool Lloyd::inflects(const std::vector<int>& faces, const std::vector<int>& piec
     const int region = labels_[faces.front()];
     int from_bends = 0, beyond_bends = 0;  // bit 1: convex seen, bit 2: concave
     for (int f : faces) {
-        const Triangle& t = model_.triangles[f];
-        Vec3 normal = (model_.points[t[1]] - model_.points[t[0]]).cross(model_.points[t[2]] - model_.points[t[0]]);
+        Vec3 normal = area_normal(model_, f);
         // The filtered normal is oriented across the mesh, and a bend below the crease angle
         // may turn it most of the way to the other face's.
         if (normal.dot(features_.normals[f]) < 0) normal = -normal;
@@ -1669,7 +1668,7 @@ bool Lloyd::part_handfuls() {
     // A handful of one exact plane is a plane face of its own (a chamfer's two triangles).
     return part_joining([&](int h) {
         return proxies_[h].faces < options_.min_quadric_faces &&
-               !exactly_planar(fit_plane(proxies_[h].moments).mean_squared, 0);
+               !on_one_exact_plane(proxies_[h].moments);
     });
 }
 
@@ -1737,7 +1736,7 @@ std::vector<char> Lloyd::part_and_join(const std::function<bool(int)>& admitted)
                 if (!(error < least)) continue;
                 Moments both = proxies_[j].moments;
                 add_to(both, proxies_[r].moments);
-                if (exactly_planar(fit_plane(both).mean_squared, 0) || vertex_surface({j, r}, faces).one)
+                if (on_one_exact_plane(both) || vertex_surface({j, r}, faces).one)
                     least = error, to = j;
             }
             if (to < 0) {
@@ -2566,10 +2565,7 @@ std::vector<int> faces_of(const std::vector<int>& labels, int region) {
 }
 
 Quadric plane_through(const Model& model, int face) {
-    const Triangle& t = model.triangles[face];
-    const Vec3 normal =
-        (model.points[t[1]] - model.points[t[0]]).cross(model.points[t[2]] - model.points[t[0]]).normalized();
-    return normalized(Quadric::plane(normal, model.barycentres[face]));
+    return normalized(Quadric::plane(area_normal(model, face).normalized(), model.barycentres[face]));
 }
 
 bool Lloyd::is_seed(int face) const {

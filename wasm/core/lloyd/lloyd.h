@@ -427,6 +427,8 @@ private:
     // (mean square), are an exact plane: a face of a coarse CAD tessellation, however few
     // of them (one triangle too).
     static bool exactly_planar(double plane_mean_squared, double noise2);
+    // Whether faces of these moments lie in one plane as closely as a file stores them.
+    static bool on_one_exact_plane(const Moments& faces) { return exactly_planar(fit_plane(faces).mean_squared, 0); }
     // Whether `faces` are one triangle that is a chart of its own on an exact tessellation.
     bool face_of_its_own(const std::vector<int>& faces) const;
     // Whether the vertices of `region` lie on the surface of region `other` as closely as
