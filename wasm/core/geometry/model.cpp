@@ -144,14 +144,22 @@ Moments moments_of(const Model& model, const std::vector<int>& faces) {
 }
 
 std::vector<std::pair<int, int>> adjacent_regions(const Model& model, const std::vector<int>& labels) {
-    std::vector<std::pair<int, int>> pairs;
+    // Per region, its neighbours of higher label: a boundary repeats its pair along its
+    // faces, so the repeats are dropped as they come and each list sorted on its own (a
+    // partition into a thousand regions asks this after every merge).
+    const int regions = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
+    std::vector<std::vector<int>> above(regions);
     for (int f = 0; f < model.face_count(); ++f)
         for (int e = model.graph.begin(f); e < model.graph.end(f); ++e) {
             const int a = labels[f], b = labels[model.graph.neighbor[e]];
-            if (a < b) pairs.emplace_back(a, b);
+            if (a < b && (above[a].empty() || above[a].back() != b)) above[a].push_back(b);
         }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    std::vector<std::pair<int, int>> pairs;
+    for (int a = 0; a < regions; ++a) {
+        std::sort(above[a].begin(), above[a].end());
+        above[a].erase(std::unique(above[a].begin(), above[a].end()), above[a].end());
+        for (int b : above[a]) pairs.emplace_back(a, b);
+    }
     return pairs;
 }
 

@@ -1353,20 +1353,34 @@ void Lloyd::ensure_valid() {
     // never makes one, so this ends; with no compatible pair left, the count is exceeded
     // rather than a region left invalid.
     for (std::size_t round = 0; round < 4 * proxies_.size() + 8; ++round) {
+        const RegionFaces faces = faces_by_region();
+        // Here a second part must be substantial (5 %, the paper's split threshold): a
+        // tessellation's facet strip beside a tangent plane is no face of its own, and the
+        // region is reported as one surface all the same (model selection never names a
+        // two-part type).
+        auto splits = [&](int i, Parts* p) {
+            return (invalid(i, faces, p) && p->both(proxies_[i].area, 0.05)) || on_plane_pair(i, faces, p);
+        };
+        // A round changes a few regions and a stop may take hundreds of rounds (a gear's
+        // teeth, a split each), so the verdicts are kept by what they depend on: the
+        // region (its fingerprint), its quadric and error, and whether plane pairs split.
+        auto verdict = [&](int i) {
+            Fnv key;
+            key.add(fingerprint(i, faces));
+            for (double c : proxies_[i].quadric.c) key.add(c);
+            key.add(proxies_[i].error);
+            key.add(static_cast<std::uint64_t>(plane_pairs_split()));
+            return memoized(stop_splits_, key.h, [&] {
+                Parts p;
+                return splits(i, &p);
+            });
+        };
         int chosen = -1;
-        Parts chosen_parts;
-        const RegionFaces faces = plane_pairs_split() ? faces_by_region() : RegionFaces{};
-        for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
-            Parts p;
-            // Here a second part must be substantial (5 %, the paper's split threshold): a
-            // tessellation's facet strip beside a tangent plane is no face of its own, and
-            // the region is reported as one surface all the same (model selection never
-            // names a two-part type).
-            if ((chosen < 0 || proxies_[i].error > proxies_[chosen].error) &&
-                ((invalid(i, &p) && p.both(proxies_[i].area, 0.05)) || on_plane_pair(i, faces, &p)))
-                chosen = i, chosen_parts = std::move(p);
-        }
+        for (int i = 0; i < static_cast<int>(proxies_.size()); ++i)
+            if ((chosen < 0 || proxies_[i].error > proxies_[chosen].error) && verdict(i)) chosen = i;
         if (chosen < 0) return;
+        Parts chosen_parts;
+        splits(chosen, &chosen_parts);
         const int added = static_cast<int>(proxies_.size());
         // The smaller part leaves: it is the one a neighbour may take.
         const int minor = chosen_parts.weight[0] < chosen_parts.weight[1] ? 0 : 1;
@@ -1376,10 +1390,10 @@ void Lloyd::ensure_valid() {
         std::vector<char> changed(proxies_.size(), 0);
         changed[chosen] = changed[added] = 1;
         refit_regions(model_, labels_, options_, proxies_, changed);
-        evaluate();
+        evaluate(&changed);
         // A part of a quadric need not be connected, nor what remains (two coplanar facets
         // at either end of a plate's edge, or faces the noise put on the second part).
-        if (settle_pieces({chosen, added})) evaluate();
+        settle_pieces({chosen, added});
         // The split-off pieces join another neighbour each lies on one surface with, if any
         // (a tessellation's facet beside a tangent plane belongs to the curved side); the
         // last first, as a merge renumbers the regions after the one it removes.
@@ -1389,7 +1403,7 @@ void Lloyd::ensure_valid() {
     }
 }
 
-bool Lloyd::settle_pieces(const std::vector<int>& regions) {
+void Lloyd::settle_pieces(const std::vector<int>& regions) {
     const DualGraph& g = model_.graph;
     const double factor = options_.noise_factor * options_.noise_factor;
     FaceErrors errors;
@@ -1463,9 +1477,9 @@ bool Lloyd::settle_pieces(const std::vector<int>& regions) {
             changed[region] = changed[to] = 1;
         }
     }
-    if (std::find(changed.begin(), changed.end(), 1) == changed.end()) return false;
+    if (std::find(changed.begin(), changed.end(), 1) == changed.end()) return;
     refit_regions(model_, labels_, options_, proxies_, changed);
-    return true;
+    evaluate(&changed);
 }
 
 void Lloyd::release_minor_parts() {
@@ -1487,11 +1501,14 @@ void Lloyd::release_minor_parts() {
     const double factor = options_.noise_factor * options_.noise_factor, floor = options_.precision * options_.precision;
     FaceErrors others;
     RegionFaces faces = exact_ ? faces_by_region() : RegionFaces{};
+    RegionFaces labelled = faces_by_region();  // as labels_ has them: `faces` gains the moved faces only
     std::vector<int> piece(exact_ ? model_.face_count() : 0, -1);
     for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
         // A second part large enough to count is ensure_valid's.
         Parts p;
-        if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() || invalid(i, &p)) continue;
+        if (proxies_[i].faces < options_.min_quadric_faces || proxies_[i].quadric.is_plane() ||
+            invalid(i, labelled, &p))
+            continue;
         const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
         std::vector<int> strip = exact_ ? off_plane_faces(faces[i], piece) : std::vector<int>{};
         if (strip.empty()) strip = p.faces[minor];
@@ -1543,9 +1560,11 @@ void Lloyd::release_minor_parts() {
             const Proxy &now = proxies_[j], &was = before.proxies[j];
             kept = now.error <= now.area * std::max(factor * was.error / std::max(was.area, 1e-300), floor);
         }
-        if (kept) continue;
-        restore(before);
-        if (exact_) faces = faces_by_region();  // the moved faces are back where they were
+        if (!kept) {
+            restore(before);
+            if (exact_) faces = faces_by_region();  // the moved faces are back where they were
+        }
+        labelled = faces_by_region();
     }
 }
 
@@ -1793,10 +1812,10 @@ std::vector<int> Lloyd::off_plane_faces(const std::vector<int>& region, std::vec
     return off;
 }
 
-bool Lloyd::invalid(int proxy, Parts* result) const {
+bool Lloyd::invalid(int proxy, const RegionFaces& faces, Parts* result) const {
     if (proxies_[proxy].faces < options_.min_quadric_faces) return false;
     const Quadric& q = proxies_[proxy].quadric;
-    Parts p = parts(q, classify_proxy(proxy), part_margin(proxy), proxy, proxy);
+    Parts p = parts(q, classify_proxy(proxy), part_margin(proxy), faces[proxy]);
     const bool two = on_two_parts(q, p, proxies_[proxy].area);
     if (result) *result = std::move(p);
     return two;
@@ -1815,11 +1834,11 @@ bool Lloyd::split_invalid(bool plane_pairs) {
     // The invalid region of largest error is split; one per decision, like an insertion.
     int chosen = -1;
     Parts chosen_parts;
-    const RegionFaces faces = plane_pairs && plane_pairs_split() ? faces_by_region() : RegionFaces{};
+    const RegionFaces faces = faces_by_region();
     for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
         if (chosen >= 0 && proxies_[i].error <= proxies_[chosen].error) continue;
         Parts p;
-        if (plane_pairs ? on_plane_pair(i, faces, &p) : invalid(i, &p)) chosen = i, chosen_parts = std::move(p);
+        if (plane_pairs ? on_plane_pair(i, faces, &p) : invalid(i, faces, &p)) chosen = i, chosen_parts = std::move(p);
     }
     if (chosen < 0) return false;
     // Each part restarts from a plane through its best face.

@@ -313,7 +313,8 @@ private:
     bool merge_disjoint(const std::vector<std::pair<int, int>>& pairs, std::vector<MergeCandidate> candidates,
                         const std::function<bool(const MergeCandidate&)>& acceptable,
                         std::vector<std::pair<int, int>>* merged, double* merged_cost, int limit);
-    bool invalid(int proxy, Parts* parts = nullptr) const;
+    // Whether a region (`faces`: of each region) lies on two parts of its quadric.
+    bool invalid(int proxy, const RegionFaces& faces, Parts* parts = nullptr) const;
     // Whether regions on a plane_pair are split (and refused as unions): with the automatic
     // count, which promises one region per surface, and below a target count, where a split
     // costs no merge (from the moment a run settles explained or stops below it, for the
@@ -374,9 +375,9 @@ private:
     void ensure_valid();
     // Each piece of these regions (faces meeting at a vertex at least) but the largest goes
     // to the adjacent region whose surface holds it within its noise, or becomes a region of
-    // its own if it can tell a surface (see lloyd.cpp); the regions changed are refitted.
-    // Whether any did.
-    bool settle_pieces(const std::vector<int>& regions);
+    // its own if it can tell a surface (see lloyd.cpp); the regions changed are refitted and
+    // evaluated.
+    void settle_pieces(const std::vector<int>& regions);
     // Merges `region` into the neighbour (not `excluded`) it costs least and lies on one
     // surface with (one_surface), whose union's quadric has one part.
     bool absorb(int region, int excluded);
@@ -610,6 +611,7 @@ private:
     mutable std::unordered_map<std::uint64_t, ExactRegion> exact_regions_;
     mutable std::unordered_map<std::uint64_t, Union> unions_;  // fit_pair's
     mutable std::unordered_map<std::uint64_t, std::optional<MergeCandidate>> same_surface_candidates_;
+    std::unordered_map<std::uint64_t, bool> stop_splits_;  // ensure_valid's verdicts
     Snapshot snapshot_;
     // At a fixed count: growing past it as the automatic count does, then merging back to it.
     enum class Regrowth { untried, growing, merging, done };
