@@ -6,6 +6,8 @@
 
 #include "geometry/rng.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -34,6 +36,10 @@ struct Fnv {
     }
 };
 
+// How many times its noise (RMS), or `precision`, a chart of a handful of faces must be
+// wide to be a face of its own under noise (wide_chart_of_its_own).
+constexpr double kFaceWidthInNoise = 20;
+
 // Memos are dropped whole past this many answers: a run rarely asks more before it ends,
 // and one that does asks of regions long gone.
 constexpr std::size_t kMemoLimit = std::size_t(1) << 16;
@@ -61,6 +67,19 @@ Fit fit_some_vertices(const Model& model, const std::vector<int>& faces) {
     for (std::size_t k = 0; k < faces.size(); k += stride)
         for (int v : model.triangles[faces[k]]) add_to(some, point_moments(model.points[v], 1));
     return fit_taubin(some);
+}
+
+// How wide faces of these moments are across their narrower in-plane direction: √12 times
+// the standard deviation of their area there (a rectangle's width).
+double narrow_width(const Moments& m) {
+    const Vec3 center = Vec3(m[1], m[2], m[3]) / m[0];
+    const Moments c = shifted_moments(m, center, 1.0);
+    auto at = [&](int i, int j, int k) { return c[moment_index(i, j, k)] / m[0]; };
+    Eigen::Matrix3d covariance;
+    covariance << at(2, 0, 0), at(1, 1, 0), at(1, 0, 1), at(1, 1, 0), at(0, 2, 0), at(0, 1, 1), at(1, 0, 1),
+        at(0, 1, 1), at(0, 0, 2);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance, Eigen::EigenvaluesOnly);
+    return std::sqrt(12 * std::max(solver.eigenvalues()[1], 0.0));
 }
 
 }  // namespace
@@ -234,7 +253,7 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     for (int c = 0; c < features_.chart_count; ++c) {
         const int faces = static_cast<int>(chart_faces_[c].size());
         const Moments sum = moments_of(model_, chart_faces_[c]);
-        const bool own_face = face_of_its_own(chart_faces_[c]);
+        const bool own_face = face_of_its_own(chart_faces_[c]) || wide_chart_of_its_own(chart_faces_[c]);
         if (!(sum[0] > 0) || (faces < 2 && !own_face)) continue;
         const Fit fit = fit_proxy(sum, faces, options_);
         double noise = 0;
@@ -2297,6 +2316,34 @@ bool Lloyd::face_of_its_own(const std::vector<int>& faces) const {
     return features_.exact && faces.size() == 1 && chart_faces_[features_.chart[faces.front()]].size() == 1;
 }
 
+bool Lloyd::wide_chart_of_its_own(const std::vector<int>& faces) const {
+    // Under noise a handful of faces fits a plane whatever it is, so its creases tell: the
+    // filtered normals crease no noise, and a chart a handful makes up on its own is a face
+    // bent away from everything round it, if it is wide against the noise. Along a noisy
+    // edge the filter still creases strips 1.5 to 5 times the noise wide, and a noisy
+    // plate's rim, 10 to 13 (the plate assembly's: counted as faces, 45 regions for its 39
+    // faces, or a large face in two); a step's end side, two to six triangles creased all
+    // round at 90°, is 100 to 200 times as wide. The finish had merged each end side of the
+    // noisy step into its top or bottom at least cost, the union's quadric turning through
+    // the creases within the noise, and no insertion went there: 4 to 6 regions of 8. Nor
+    // narrower than that times `precision` (charts of two or three faces along the clean
+    // block.off's edges, 2e-3 of its size wide, 85 times their roughness: counted as faces,
+    // the clean block's partition changed and the noisy ones no longer matched it). One
+    // triangle creased all round under noise is a fold-over or a spike's tip as often as a
+    // face.
+    if (features_.exact || faces.size() < 2) return false;
+    const int chart = features_.chart[faces.front()];
+    if (chart_faces_[chart].size() != faces.size() ||
+        !std::all_of(faces.begin(), faces.end(), [&](int f) { return features_.chart[f] == chart; }))
+        return false;
+    const Moments sum = moments_of(model_, faces);
+    double noise = 0;
+    for (int f : faces) noise += face_noise_[f];
+    const double roughness = std::sqrt(noise / sum[0]);
+    return roughness > kStoredPrecision &&
+           narrow_width(sum) >= kFaceWidthInNoise * std::max(roughness, options_.precision);
+}
+
 bool Lloyd::exactly_planar(double plane_mean_squared, double noise2) {
     // Faces in one plane as closely as a file stores them, where the mesh is as exact (a
     // coarse CAD tessellation's face: a box as 12 triangles, a prism's sides one quad
@@ -2369,7 +2416,7 @@ bool Lloyd::merge_handful(std::vector<std::pair<int, int>>* merged, double* cost
     // over a plate's bottom, its chamfers and a side, 5 % of the size off its quadric).
     auto told_plane = [&](int r) {
         const Proxy& p = proxies_[r];
-        if (holds_plane[r] || face_of_its_own(faces[r])) return true;
+        if (holds_plane[r] || face_of_its_own(faces[r]) || wide_chart_of_its_own(faces[r])) return true;
         if (p.fitted && exactly_planar(p.fit_error, region_noise_[r] / p.area)) return true;
         return options_.proxies == 0 && in_one_plane(r) &&
                std::none_of(faces[r].begin(), faces[r].end(), [&](int f) { return features_.arc_facet[f]; });
