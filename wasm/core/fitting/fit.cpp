@@ -229,6 +229,12 @@ Fit fit_plane(const Moments& region) {
     return to_unit_frame(plane_local(local), local);
 }
 
+Vec3 principal_variances(const Moments& region) {
+    const LocalMoments local = localize(region);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(second_moments(local), Eigen::EigenvaluesOnly);
+    return solver.eigenvalues().cwiseMax(0.0) * (local.radius * local.radius);
+}
+
 Fit fit_region(const Moments& region, const FitOptions& options) {
     const LocalMoments local = localize(region);
     const Fit plane = plane_local(local);

@@ -56,6 +56,11 @@ Fit fit_taubin_through(const Moments& points, const Moments& faces, double on);
 // The L2-optimal plane (area-weighted principal axes).
 Fit fit_plane(const Moments& region);
 
+// The variances of a region's area about its centroid along its principal axes, in
+// increasing order: the first is fit_plane's mean squared distance, the second the spread
+// across the region's narrower in-plane direction.
+Vec3 principal_variances(const Moments& region);
+
 // The better of the two, with the plane preferred as FitOptions says.
 Fit fit_region(const Moments& region, const FitOptions& options = {});
 

@@ -6,8 +6,6 @@
 
 #include "geometry/rng.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -37,7 +35,7 @@ struct Fnv {
 };
 
 // How many times its noise (RMS), or `precision`, a chart of a handful of faces must be
-// wide to be a face of its own under noise (wide_chart_of_its_own).
+// wide to be a face of its own under noise (wide_against_noise).
 constexpr double kFaceWidthInNoise = 20;
 
 // Memos are dropped whole past this many answers: a run rarely asks more before it ends,
@@ -67,19 +65,6 @@ Fit fit_some_vertices(const Model& model, const std::vector<int>& faces) {
     for (std::size_t k = 0; k < faces.size(); k += stride)
         for (int v : model.triangles[faces[k]]) add_to(some, point_moments(model.points[v], 1));
     return fit_taubin(some);
-}
-
-// How wide faces of these moments are across their narrower in-plane direction: √12 times
-// the standard deviation of their area there (a rectangle's width).
-double narrow_width(const Moments& m) {
-    const Vec3 center = Vec3(m[1], m[2], m[3]) / m[0];
-    const Moments c = shifted_moments(m, center, 1.0);
-    auto at = [&](int i, int j, int k) { return c[moment_index(i, j, k)] / m[0]; };
-    Eigen::Matrix3d covariance;
-    covariance << at(2, 0, 0), at(1, 1, 0), at(1, 0, 1), at(1, 1, 0), at(0, 2, 0), at(0, 1, 1), at(1, 0, 1),
-        at(0, 1, 1), at(0, 0, 2);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance, Eigen::EigenvaluesOnly);
-    return std::sqrt(12 * std::max(solver.eigenvalues()[1], 0.0));
 }
 
 }  // namespace
@@ -245,21 +230,22 @@ Lloyd::Lloyd(const Model& model, const LloydOptions& options)
     for (int f = 0; f < model_.face_count(); ++f) face_noise_[f] = face_noise(model_, features_.roughness, f);
     // Each chart's error under its own fit, what a proxy of its own would leave. A chart
     // of a handful of faces is as likely noise as structure, unless it is an exact plane
-    // (exactly_planar: a coarse CAD tessellation's face, two triangles) or one triangle
-    // creased all round on an exact tessellation (face_of_its_own).
+    // (exactly_planar: a coarse CAD tessellation's face, two triangles), one triangle
+    // creased all round on an exact tessellation (face_of_its_own), or elsewhere wide
+    // against its noise (wide_against_noise).
     chart_error_.assign(features_.chart_count, 0.0);
     chart_told_.assign(features_.chart_count, 0);
     FaceErrors own;
     for (int c = 0; c < features_.chart_count; ++c) {
         const int faces = static_cast<int>(chart_faces_[c].size());
         const Moments sum = moments_of(model_, chart_faces_[c]);
-        const bool own_face = face_of_its_own(chart_faces_[c]) || wide_chart_of_its_own(chart_faces_[c]);
+        const bool own_face = face_of_its_own(chart_faces_[c]);
         if (!(sum[0] > 0) || (faces < 2 && !own_face)) continue;
         const Fit fit = fit_proxy(sum, faces, options_);
         double noise = 0;
         for (int f : chart_faces_[c]) noise += face_noise_[f];
-        chart_told_[c] =
-            faces >= options_.min_quadric_faces || own_face || exactly_planar(fit.mean_squared, noise / sum[0]);
+        chart_told_[c] = faces >= options_.min_quadric_faces || own_face || wide_against_noise(sum, noise) ||
+                         exactly_planar(fit.mean_squared, noise / sum[0]);
         if (!chart_told_[c]) continue;
         own.reset(model_, {fit.quadric});
         for (int f : chart_faces_[c]) chart_error_[c] += own(f, 0);
@@ -2316,7 +2302,7 @@ bool Lloyd::face_of_its_own(const std::vector<int>& faces) const {
     return features_.exact && faces.size() == 1 && chart_faces_[features_.chart[faces.front()]].size() == 1;
 }
 
-bool Lloyd::wide_chart_of_its_own(const std::vector<int>& faces) const {
+bool Lloyd::wide_against_noise(const Moments& faces, double noise) const {
     // Under noise a handful of faces fits a plane whatever it is, so its creases tell: the
     // filtered normals crease no noise, and a chart a handful makes up on its own is a face
     // bent away from everything round it, if it is wide against the noise. Along a noisy
@@ -2328,20 +2314,25 @@ bool Lloyd::wide_chart_of_its_own(const std::vector<int>& faces) const {
     // the creases within the noise, and no insertion went there: 4 to 6 regions of 8. Nor
     // narrower than that times `precision` (charts of two or three faces along the clean
     // block.off's edges, 2e-3 of its size wide, 85 times their roughness: counted as faces,
-    // the clean block's partition changed and the noisy ones no longer matched it). One
-    // triangle creased all round under noise is a fold-over or a spike's tip as often as a
-    // face.
-    if (features_.exact || faces.size() < 2) return false;
+    // the clean block's partition changed and the noisy ones no longer matched it).
+    if (features_.exact) return false;
+    const double roughness = std::sqrt(noise / faces[0]);
+    if (!(roughness > kStoredPrecision)) return false;
+    const double width = std::sqrt(12 * principal_variances(faces)[1]);  // a rectangle's, from its spread
+    return width >= kFaceWidthInNoise * std::max(roughness, options_.precision);
+}
+
+bool Lloyd::wide_chart_of_its_own(const std::vector<int>& faces) const {
+    // One triangle creased all round under noise is a fold-over or a spike's tip as often as
+    // a face.
+    if (faces.size() < 2) return false;
     const int chart = features_.chart[faces.front()];
     if (chart_faces_[chart].size() != faces.size() ||
         !std::all_of(faces.begin(), faces.end(), [&](int f) { return features_.chart[f] == chart; }))
         return false;
-    const Moments sum = moments_of(model_, faces);
     double noise = 0;
     for (int f : faces) noise += face_noise_[f];
-    const double roughness = std::sqrt(noise / sum[0]);
-    return roughness > kStoredPrecision &&
-           narrow_width(sum) >= kFaceWidthInNoise * std::max(roughness, options_.precision);
+    return wide_against_noise(moments_of(model_, faces), noise);
 }
 
 bool Lloyd::exactly_planar(double plane_mean_squared, double noise2) {

@@ -432,9 +432,11 @@ private:
     static bool on_one_exact_plane(const Moments& faces) { return exactly_planar(fit_plane(faces).mean_squared, 0); }
     // Whether `faces` are one triangle that is a chart of its own on an exact tessellation.
     bool face_of_its_own(const std::vector<int>& faces) const;
-    // Whether `faces` are a chart of two faces or more, on a tessellation that is not exact,
-    // at least kFaceWidthInNoise times as wide as their roughness and as `precision`: a face
-    // of its own under noise (see lloyd.cpp).
+    // Whether faces of these moments, on a tessellation that is not exact and with this
+    // noise (Σ face_noise_), are at least kFaceWidthInNoise times as wide as their roughness
+    // and as `precision`: a face of its own under noise if they are a chart (see lloyd.cpp).
+    bool wide_against_noise(const Moments& faces, double noise) const;
+    // Whether `faces` are a chart of two faces or more, wide_against_noise.
     bool wide_chart_of_its_own(const std::vector<int>& faces) const;
     // Whether the vertices of `region` lie on the surface of region `other` as closely as
     // its own do.
