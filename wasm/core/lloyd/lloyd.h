@@ -585,6 +585,7 @@ private:
     double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
     int unpaid_ = 0;  // insertions in a row that did not pay
+    int fewest_misfit_charts_ = std::numeric_limits<int>::max();  // after an insertion, with little unexplained
     double least_before_insert_ = std::numeric_limits<double>::infinity();  // below a target count
     StopReason finish_reason_ = StopReason::none;
     // The last finishing merge (automatic count), until it is judged.
