@@ -711,6 +711,10 @@ bool Lloyd::fitted_below_target() {
 }
 
 bool Lloyd::decide_finish() {
+    if (finishing_) {
+        finish();
+        return true;
+    }
     // The last insertion is judged by what it bought: too little, and growing stops. Three
     // insertions in a row that do not pay end the growth (one alone may need more Lloyd
     // iterations than its stage gave it). On an exact export, one that left more error than
@@ -736,8 +740,8 @@ bool Lloyd::decide_finish() {
     // stay a fraction of a per cent beyond their noise. Elsewhere the creases are the part's
     // own, and a misfit chart is a face not yet found however little it buys (applied to the
     // Voron's exports, the rule moved 20 of 145, a belt cover to 12 times its RMS).
-    if (energy_before_insert_ >= 0 && !finishing_) {
-        const int misfit = static_cast<int>(misfit_charts().size());
+    const int misfit = static_cast<int>(misfit_charts().size());  // every face's region, once
+    if (energy_before_insert_ >= 0) {
         const bool pays = energy_ < energy_before_insert_ * (1 - options_.min_gain * inserted_);
         bool judged = misfit == 0;
         if (!judged && noisy_ && unexplained() <= options_.min_gain * energy_) {
@@ -748,7 +752,7 @@ bool Lloyd::decide_finish() {
         else if (judged && !(exact_ && energy_ > energy_before_insert_) && ++unpaid_ >= 3)
             finishing_ = true, finish_reason_ = StopReason::no_gain;
     }
-    if (!finishing_ && misfit_charts().empty() && misfit_clusters().empty() && every_region_explained()) {
+    if (!finishing_ && misfit == 0 && misfit_clusters().empty() && every_region_explained()) {
         // Explained, but a region may still be two planes its quadric bends between within
         // their noise (plane_pair): split, and grow on from there. Only now: while growing,
         // insertions part such regions anyway, and a split restarts both parts from planes
