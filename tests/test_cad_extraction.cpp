@@ -4,6 +4,7 @@
 // the seed and the initialisations.
 #include "cad_parts.h"
 #include "examples.h"
+#include "export/report.h"
 #include "ground_truth.h"
 #include "shapes.h"
 #include "fitting/fit.h"
@@ -442,12 +443,23 @@ TEST(CadExtraction, EveryRegionOfANoisyPlateHasItsRmsMeasured) {
     const Part part = make_part(c.part, c.options);
     const Result r = test::approximate(part.mesh, test::with_proxies(0, c.options.seed));
     ASSERT_TRUE(r.metrics);
-    for (std::size_t i = 0; i < r.proxies.size(); ++i) {
+    int unsampled = 0;
+    for (int i = 0; i < static_cast<int>(r.proxies.size()); ++i) {
         SCOPED_TRACE("region " + std::to_string(i));
-        if (!(r.metrics->region_hausdorff[i] > 0)) continue;  // no sample fell in it
+        const nlohmann::json reported = proxy_report(r, i).at("metrics");
+        EXPECT_EQ(reported.at("samples").get<long>(), r.metrics->region_samples[i]);
+        if (r.metrics->region_samples[i] == 0) {
+            // Reported as unmeasured, not as an RMS of 0 (one of the fourteen here).
+            ++unsampled;
+            EXPECT_TRUE(reported.at("rms").is_null());
+            EXPECT_TRUE(reported.at("hausdorff").is_null());
+            continue;
+        }
         EXPECT_GT(r.metrics->region_rms[i], 0);
         EXPECT_LE(r.metrics->region_rms[i], r.metrics->region_hausdorff[i]);
+        EXPECT_DOUBLE_EQ(reported.at("rms").get<double>(), r.metrics->region_rms[i]);
     }
+    EXPECT_GT(unsampled, 0);  // the case this test is for
 }
 
 TEST(CadExtractionHeavy, UnderNoiseStripsCreasedAlongAnEdgeAreNoFacesOfTheirOwn) {

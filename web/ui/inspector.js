@@ -12,6 +12,10 @@ import { format, keyParameters, parameterLines, polynomial, typeName } from './f
 // The type, and what edits hold of it.
 const typeLabel = (p) => typeName(p.type) + (p.imposed_type ? ' (imposed)' : '') + (p.locked ? ' · locked' : '');
 
+// A region of a few faces may get no measurement sample: its RMS is unknown, not 0.
+const unsampled = (p) => p.metrics && p.metrics.rms === null;
+const noSample = 'no measurement sample fell in this region';
+
 // Callbacks: focus(region, pinned) when a row is entered (pinned false), clicked or keyed
 // (pinned true; region -1 unpins); visibility(hiddenSet) when regions are hidden or shown;
 // frame(region); merge(region) when a row is shift-clicked (into the pinned one).
@@ -71,7 +75,8 @@ export function createInspector({ focus, visibility, frame, merge }) {
       const row = element('tr', { tabIndex: 0, dataset: { region: p.id } },
         element('td', {}, shown), element('td', {}, swatch, String(p.id)), element('td', { textContent: typeLabel(p) }),
         element('td', { textContent: keyParameters(p) }), element('td', { textContent: ((100 * p.area) / total).toFixed(1) }),
-        element('td', { textContent: format(p.metrics?.rms ?? p.rms_error) }));
+        unsampled(p) ? element('td', { textContent: '–', title: noSample })
+          : element('td', { textContent: format(p.metrics?.rms ?? p.rms_error) }));
       row.addEventListener('mouseenter', () => focus(p.id, false));
       row.addEventListener('click', (e) => (e.shiftKey ? merge(p.id) : focus(p.id, true)));
       row.addEventListener('dblclick', () => isolate(p.id));
@@ -88,7 +93,8 @@ export function createInspector({ focus, visibility, frame, merge }) {
     detail.replaceChildren();
     if (!proxy) return;
     const lines = [`region ${proxy.id}: ${typeLabel(proxy)}${proxy.special_fit ? ' (refitted)' : ''}`,
-      `${proxy.faces} faces, RMS ${format(proxy.metrics?.rms ?? 0)} of the diagonal`,
+      `${proxy.faces} faces, ` + (unsampled(proxy) ? `RMS unmeasured (${noSample})`
+        : proxy.metrics ? `RMS ${format(proxy.metrics.rms)} of the diagonal` : `fit RMS ${format(proxy.rms_error)}`),
       // How clear the type choice was: the chosen type's fit to the region's vertices
       // against the best fit of another type.
       ...(proxy.runner_up ? [`type fit RMS ${format(proxy.type_rms)}; runner-up ${typeName(proxy.runner_up.type)}, RMS ${format(proxy.runner_up.rms)}`] : []),

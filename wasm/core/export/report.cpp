@@ -56,8 +56,13 @@ nlohmann::json proxy_report(const Result& result, int i) {
                           {"params", params_report(p.shape)},
                           {"locked", p.locked},
                           {"imposed_type", p.imposed == ImposedType::none ? nlohmann::json() : nlohmann::json(imposed_type_name(p.imposed))}};
-    if (const auto& m = result.metrics)
-        out["metrics"] = {{"rms", m->region_rms.at(i)}, {"hausdorff", m->region_hausdorff.at(i)}};
+    if (const auto& m = result.metrics) {
+        // No sample in the region: unmeasured, not an RMS of 0.
+        const long samples = m->region_samples.at(i);
+        out["metrics"] = {{"rms", samples > 0 ? nlohmann::json(m->region_rms.at(i)) : nlohmann::json()},
+                          {"hausdorff", samples > 0 ? nlohmann::json(m->region_hausdorff.at(i)) : nlohmann::json()},
+                          {"samples", samples}};
+    }
     return out;
 }
 

@@ -336,6 +336,7 @@ Metrics Measurement::result() const {
         const bool credible = corrected >= 0 && corrected <= r.max * r.max;
         m.region_rms.push_back(std::sqrt(credible ? corrected : r.mean(0)) * scale);
         m.region_hausdorff.push_back(r.max * scale);
+        m.region_samples.push_back(r.count);
     }
     m.vertex_distance.resize(b_.vertex_distance.size());
     for (std::size_t v = 0; v < b_.vertex_distance.size(); ++v) m.vertex_distance[v] = std::abs(b_.vertex_distance[v]) * scale;

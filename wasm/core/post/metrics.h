@@ -29,8 +29,10 @@ struct Metrics {
     // samples it rests on (both surfaces).
     double rms_standard_error = 0;
     long samples = 0;
-    // The same restricted to each region's samples (both surfaces).
+    // The same restricted to each region's samples (both surfaces), and how many fell in
+    // it: a region of a few faces may get none, and its figures are then 0 and unmeasured.
     std::vector<double> region_rms, region_hausdorff;
+    std::vector<long> region_samples;
     // Distance of every projected vertex to the input surface, relative to the diagonal
     // (the heat map of the browser).
     std::vector<double> vertex_distance;
