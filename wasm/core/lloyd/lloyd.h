@@ -373,6 +373,9 @@ private:
     bool merge_cheapest(int limit = 1);
     // Splits what is still invalid at the end of the stage (see lloyd.cpp).
     void ensure_valid();
+    // Whether a region of a noisy mesh is one plane: a plane holds it within its noise and
+    // its faces face one way (all but split_fraction of its area).
+    bool one_noisy_plane(int proxy, const RegionFaces& faces) const;
     // Each piece of these regions (faces meeting at a vertex at least) but the largest goes
     // to the adjacent region whose surface holds it within its noise, or becomes a region of
     // its own if it can tell a surface (see lloyd.cpp); the regions changed are refitted and
