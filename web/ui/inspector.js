@@ -75,8 +75,7 @@ export function createInspector({ focus, visibility, frame, merge }) {
       const row = element('tr', { tabIndex: 0, dataset: { region: p.id } },
         element('td', {}, shown), element('td', {}, swatch, String(p.id)), element('td', { textContent: typeLabel(p) }),
         element('td', { textContent: keyParameters(p) }), element('td', { textContent: ((100 * p.area) / total).toFixed(1) }),
-        unsampled(p) ? element('td', { textContent: '–', title: noSample })
-          : element('td', { textContent: format(p.metrics?.rms ?? p.rms_error) }));
+        element('td', unsampled(p) ? { textContent: '–', title: noSample } : { textContent: format(p.metrics?.rms ?? p.rms_error) }));
       row.addEventListener('mouseenter', () => focus(p.id, false));
       row.addEventListener('click', (e) => (e.shiftKey ? merge(p.id) : focus(p.id, true)));
       row.addEventListener('dblclick', () => isolate(p.id));
