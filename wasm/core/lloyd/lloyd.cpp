@@ -1869,11 +1869,8 @@ bool Lloyd::one_noisy_plane(int proxy, const RegionFaces& faces) const {
     const Fit plane = fit_plane(p.moments);
     if (!(p.area * plane.mean_squared <= noise_energy(proxy))) return false;
     // Faces turned both ways are two sides (a thin plate's, within the noise of one plane).
-    const Vec3 normal = plane.quadric.b();
-    double ahead = 0;
-    for (int f : faces[proxy])
-        if (normal.dot(features_.normals[f]) > 0) ahead += model_.areas[f];
-    return std::min(ahead, p.area - ahead) < options_.split_fraction * p.area;
+    const Parts sides = parts(plane.quadric, Classification{}, 0, faces[proxy]);
+    return std::min(sides.weight[0], sides.weight[1]) < options_.split_fraction * p.area;
 }
 
 bool Lloyd::on_plane_pair(int proxy, const RegionFaces& faces, Parts* result) const {
