@@ -526,7 +526,13 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
         for (rings = 1; rings < 6 && 1 + 1.5 * rings * (rings + 1) < ratio * ratio; ++rings) {}
     }
     std::vector<int> averaged(n, 1);  // faces each face's starting normal averages
-    const std::vector<Vec3> start = rings > 0 ? guidance_normals(g, raw, model.areas, rings, averaged) : raw;
+    std::vector<Vec3> start = rings > 0 ? guidance_normals(g, raw, model.areas, rings, averaged) : raw;
+    // A face the noise tilts by half the range or less on its own keeps its own normal: the
+    // median face's patches took a slab beside a small noisy part whole, its sides and far
+    // face too, one normal. (Fewer rings for faces between, as their width would have it,
+    // left the noisy pipe junction's larger faces noisier than that says: 344 charts.)
+    for (int f = 0; f < n && rings > 0; ++f)
+        if (2 * noise <= 0.5 * options.filter_range * altitude[f]) start[f] = raw[f], averaged[f] = 1;
     std::vector<char> reliable(n);
     std::vector<double> range(n);  // the filter's normal difference of half weight, per face
     for (int f = 0; f < n; ++f) {
