@@ -114,25 +114,21 @@ TEST(Features, AnInexactCoarseTessellationKeepsItsCreaseCharts) {
 TEST(Features, AFaceWideAgainstTheNoiseKeepsItsOwnNormal) {
     // Noise of the faces' own size on the small rounded plate makes the filter start each
     // face from the mean normal of a patch around it; its rings were set once for the whole
-    // mesh, by the median face, so the slab beside the plate, 32 triangles hundreds of times
+    // mesh, by the median face, so the slab beside the plate, its triangles hundreds of times
     // wider than the noise, took patches of six rings too: its top, bottom and sides one
     // normal, one chart, and Lloyd fitted the slab as one elliptic cylinder.
     PartOptions options;
     options.noise = 0.001, options.random_pose = true;
     const Part part = make_part("rounded_plate", options);
     const Model model = make_model(part.mesh);
+    ASSERT_EQ(static_cast<std::size_t>(model.face_count()), part.face.size());
     const Features features = detect_features(model);
-    Vec3 low = model.points[0], high = model.points[0];
-    for (const Vec3& p : model.points) low = low.cwiseMin(p), high = high.cwiseMax(p);
-    const double sigma = options.noise * (high - low).norm();  // the unit frame's, as the points
-    int wide = 0;
+    const int first_slab_face = static_cast<int>(part.surfaces.size()) - 6;  // its top, bottom and sides
+    int slab = 0;
     for (int f = 0; f < model.face_count(); ++f) {
-        const Triangle& t = model.triangles[f];
-        double longest = 0;
-        for (int i = 0; i < 3; ++i) longest = std::max(longest, (model.points[t[i]] - model.points[t[(i + 1) % 3]]).norm());
-        if (2 * model.areas[f] / longest < 20 * sigma) continue;
-        ++wide;
+        if (part.face[f] < first_slab_face) continue;
+        ++slab;
         EXPECT_GT(features.normals[f].dot(area_normal(model, f).normalized()), std::cos(10 * M_PI / 180)) << "face " << f;
     }
-    EXPECT_GE(wide, 24);  // the slab's top and bottom at least
+    EXPECT_EQ(slab, 48);
 }
