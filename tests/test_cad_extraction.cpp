@@ -103,14 +103,24 @@ WholeFaces whole_large_faces(const Part& part, const std::vector<int>& labels, d
     return out;
 }
 
+// Region → true face → its triangles there, over the true faces `counted` admits (all
+// without it).
+using FacesHeld = std::map<int, std::map<int, int>>;
+FacesHeld faces_held(const Part& part, const std::vector<int>& labels, const std::function<bool(int)>& counted = {}) {
+    FacesHeld held;
+    for (std::size_t t = 0; t < part.face.size(); ++t)
+        if (!counted || counted(part.face[t])) ++held[labels[t]][part.face[t]];
+    return held;
+}
+
 // How many regions hold a tenth or more of each of two large faces (at least `large` of the
 // part's triangles each).
 int regions_over_two_large_faces(const Part& part, const std::vector<int>& labels, double large = 0.1) {
     std::map<int, int> triangles;  // face → its triangles
     for (int face : part.face) ++triangles[face];
-    std::map<int, std::map<int, int>> held;  // region → large face → its triangles there
-    for (std::size_t t = 0; t < part.face.size(); ++t)
-        if (triangles[part.face[t]] >= large * static_cast<double>(part.face.size())) ++held[labels[t]][part.face[t]];
+    const FacesHeld held = faces_held(part, labels, [&](int face) {
+        return triangles[face] >= large * static_cast<double>(part.face.size());
+    });
     int count = 0;
     for (const auto& [region, faces] : held) {
         int sizeable = 0;
@@ -361,10 +371,9 @@ TEST(CadExtraction, ASideOfTwoTrianglesIsNotMergedAwayWithTheCoarseCornersBeside
         options.random_pose = true, options.seed = 31 + pose, options.detail = 0.6;
         const Part part = make_part("rounded_plate", options);
         const Outcome o = run(part, counted(0, options.seed));
-        std::map<int, std::set<int>> planes_in;  // region → the true planes it holds faces of
-        for (std::size_t t = 0; t < part.face.size(); ++t)
-            if (part.surfaces[part.face[t]].type == QuadricType::plane)
-                planes_in[o.result.face_labels[t]].insert(part.face[t]);
+        const FacesHeld planes_in = faces_held(part, o.result.face_labels, [&](int face) {
+            return part.surfaces[face].type == QuadricType::plane;
+        });
         for (const auto& [region, planes] : planes_in) EXPECT_EQ(planes.size(), 1u) << "region " << region;
         EXPECT_GE(o.regions, 13);
     }
@@ -445,8 +454,7 @@ TEST(CadExtraction, UnderNoiseAChamferStaysOnePlaneAtTheStop) {
     const Outcome automatic = run(part, counted(0, c.options.seed));
     std::map<int, int> triangles;  // true face → its triangles
     for (int face : part.face) ++triangles[face];
-    std::map<int, std::map<int, int>> held;  // region → true face → its triangles there
-    for (std::size_t t = 0; t < part.face.size(); ++t) ++held[automatic.result.face_labels[t]][part.face[t]];
+    const FacesHeld held = faces_held(part, automatic.result.face_labels);
     int handfuls = 0;
     for (const auto& [region, faces] : held) {
         int size = 0;
@@ -476,9 +484,7 @@ TEST(CadExtraction, UnderNoiseASlabBesideASmallPartKeepsItsFaces) {
     // The slab's six faces (the last six: its top, bottom and four sides) are each a region's
     // own: no region holds triangles of two of them.
     const int first_slab_face = static_cast<int>(part.surfaces.size()) - 6;
-    std::map<int, std::set<int>> slab_faces;  // region → the slab's true faces it holds
-    for (std::size_t t = 0; t < part.face.size(); ++t)
-        if (part.face[t] >= first_slab_face) slab_faces[automatic.result.face_labels[t]].insert(part.face[t]);
+    const FacesHeld slab_faces = faces_held(part, automatic.result.face_labels, [&](int face) { return face >= first_slab_face; });
     EXPECT_EQ(slab_faces.size(), 6u);
     for (const auto& [region, faces] : slab_faces) EXPECT_EQ(faces.size(), 1u) << "region " << region;
 }
