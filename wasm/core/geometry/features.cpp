@@ -531,8 +531,9 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // median face's patches took a slab beside a small noisy part whole, its sides and far
     // face too, one normal. (Fewer rings for faces between, as their width would have it,
     // left the noisy pipe junction's larger faces noisier than that says: 344 charts.)
-    for (int f = 0; f < n && rings > 0; ++f)
-        if (2 * noise <= 0.5 * options.filter_range * altitude[f]) start[f] = raw[f], averaged[f] = 1;
+    if (rings > 0)
+        for (int f = 0; f < n; ++f)
+            if (2 * noise <= 0.5 * options.filter_range * altitude[f]) start[f] = raw[f], averaged[f] = 1;
     std::vector<char> reliable(n);
     std::vector<double> range(n);  // the filter's normal difference of half weight, per face
     for (int f = 0; f < n; ++f) {
