@@ -364,20 +364,46 @@ VertexDeviations vertex_deviations(const Model& model, const std::vector<Vec3>& 
     return out_deviations;
 }
 
-// What a chart's vertices leave off their own best plane: the sum of their squared
-// distances and its degrees of freedom (k − 3 for k vertices, none below four). On a
-// curved chart it holds the chart's bend too: a limit on its noise, never less.
-struct PlaneResidual {
-    double squares = 0, freedom = 0;
-};
+// Under noise σ a vertex's deviation has a standard deviation of σ (median of its
+// magnitude 0.674 σ), and a locally exact surface leaves an RMS of about 0.9 σ.
+constexpr double kLeftByExactSurface = 0.9;
+constexpr double kDeviationCalibration = kLeftByExactSurface / 0.674;
 
-std::vector<PlaneResidual> plane_residuals(const Model& model, const std::vector<int>& chart, int chart_count) {
-    std::vector<std::pair<int, int>> members;  // (chart, vertex), each once
+// The most noise a plane fitted to k points leaves room for, when it leaves them a sum of
+// squared distances `squares` over `freedom` = k − 3 degrees of freedom (summed over
+// several planes, both add up): the upper 95 % confidence limit of σ, by the Wilson–Hilferty
+// approximation of the χ² quantile (below the true one at few degrees of freedom: a looser
+// limit), as the RMS an exact surface leaves; infinite without freedom. On a curved
+// surface the plane leaves its bend too: the limit only errs high.
+double plane_noise_limit(double squares, double freedom) {
+    constexpr double kZ = 1.645;  // the standard normal's 95 % quantile
+    const double root = freedom > 0 ? 1 - 2 / (9 * freedom) - kZ * std::sqrt(2 / (9 * freedom)) : 0;
+    if (!(root > 0)) return std::numeric_limits<double>::infinity();
+    return kLeftByExactSurface * std::sqrt(squares / (freedom * root * root * root));
+}
+
+// Per chart, the roughness of a chart too small for a median of its own (30 vertices):
+// the whole mesh's median; in a connected component without 30 measured vertices, no more
+// than plane_noise_limit over its charts, each fitted by its own plane. A slab beside a
+// small noisy plate, apart from it, no vertex of its faces (a dozen triangles) with two
+// rings in its own chart, took the plate's median, read across creases the noise garbles:
+// 4.5 σ, within which one elliptic cylinder explained the whole slab. (Each chart's own
+// plane bounding its roughness, even at 95 % confidence, put some of a fine noisy part's
+// hundreds of noise charts below its noise, and Lloyd grew regions into them; so did each
+// component's own median, on the noisy plate assembly's fine plates.)
+std::vector<double> unmeasured_roughness(const Model& model, const VertexDeviations& deviations,
+                                         const std::vector<int>& chart, int chart_count) {
+    std::vector<int> component(chart_count, 0);
+    for (int f = 0; f < model.face_count(); ++f) component[chart[f]] = model.component[f];
+    std::vector<int> measured(model.component_count, 0);
+    for (int c : deviations.chart) ++measured[component[c]];
+    std::vector<std::pair<int, int>> members;  // (chart, vertex) of unmeasured components, each once
     for (int f = 0; f < model.face_count(); ++f)
-        for (int v : model.triangles[f]) members.emplace_back(chart[f], v);
+        if (measured[model.component[f]] < 30)
+            for (int v : model.triangles[f]) members.emplace_back(chart[f], v);
     std::sort(members.begin(), members.end());
     members.erase(std::unique(members.begin(), members.end()), members.end());
-    std::vector<PlaneResidual> residual(chart_count);
+    std::vector<double> squares(model.component_count, 0.0), freedom(model.component_count, 0.0);
     for (std::size_t begin = 0, end = 0; begin < members.size(); begin = end) {
         const int c = members[begin].first;
         Vec3 centre = Vec3::Zero();
@@ -390,70 +416,45 @@ std::vector<PlaneResidual> plane_residuals(const Model& model, const std::vector
             const Vec3 d = model.points[members[i].second] - centre;
             scatter += d * d.transpose();
         }
-        const double least = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter, Eigen::EigenvaluesOnly).eigenvalues()[0];
-        residual[c] = {std::max(0.0, least), k - 3};
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter, Eigen::EigenvaluesOnly);
+        squares[component[c]] += std::max(0.0, solver.eigenvalues()[0]);
+        freedom[component[c]] += k - 3;
     }
-    return residual;
-}
-
-// The most roughness a plane's residual leaves room for, at the calibration of
-// chart_roughness (a locally exact surface leaves 0.9 σ): the upper 95 % confidence limit
-// of σ, by the Wilson–Hilferty approximation of the χ² quantile (below the true one at few
-// degrees of freedom: a looser limit); infinite without freedom.
-double plane_limit(const PlaneResidual& r) {
-    constexpr double kZ = 1.645;  // the standard normal's 95 % quantile
-    const double root = r.freedom > 0 ? 1 - 2 / (9 * r.freedom) - kZ * std::sqrt(2 / (9 * r.freedom)) : 0;
-    if (!(root > 0)) return std::numeric_limits<double>::infinity();
-    return 0.9 * std::sqrt(r.squares / (r.freedom * root * root * root));
+    const double overall = kDeviationCalibration * median(deviations.magnitude);
+    std::vector<double> roughness(chart_count);
+    for (int c = 0; c < chart_count; ++c) {
+        const int k = component[c];
+        roughness[c] = measured[k] >= 30 ? overall : std::min(overall, plane_noise_limit(squares[k], freedom[k]));
+    }
+    return roughness;
 }
 
 // Per chart: the median of its vertices' deviations (a bend inside a chart, a tangent edge
 // between a cylinder and a chamfer, affects a line of vertices only), scaled so that
 // under noise it is the RMS distance a locally exact surface leaves (samples at vertices
-// and barycentres). Where half a chart's vertices or more lie `beside_bend` (per vertex,
-// or empty; a countersink two facets tall between two bends), the median is one of
-// theirs: it is taken over the others. An `exact` chart (exact_groups) has no noise to
-// measure: its vertices beside bends never count, and the others, however few, are its
-// own (none: 0), not the whole mesh's (a coarse chamfered box, 44 triangles, all its
-// vertices on chamfers, had a roughness of 8 % of its size and came out as one sphere).
-// A chart too small for a median of its own (30 vertices) takes the whole mesh's; in a
-// connected component (`component`, per chart) without 30 measured vertices, no more than
-// the most noise its charts' planes leave room for together (`residual`, per chart). A
-// slab beside a small noisy plate, apart from it, no vertex of its faces (a dozen
-// triangles) with two rings in its own chart, took the plate's median, read across creases
-// the noise garbles: 4.5 σ, within which one elliptic cylinder explained the whole slab.
-// (Each chart's own plane bounding its roughness, even at 95 % confidence, put some of a
-// fine noisy part's hundreds of noise charts below its noise, and Lloyd grew regions into
-// them; so did each component's own median, on the noisy plate assembly's fine plates.)
+// and barycentres); a chart with fewer than 30 takes `unmeasured` (unmeasured_roughness).
+// Where half a chart's vertices or more lie `beside_bend` (per vertex, or empty; a
+// countersink two facets tall between two bends), the median is one of theirs: it is
+// taken over the others. An `exact` chart (exact_groups) has no noise to measure: its
+// vertices beside bends never count, and the others, however few, are its own (none: 0),
+// not the whole mesh's (a coarse chamfered box, 44 triangles, all its vertices on
+// chamfers, had a roughness of 8 % of its size and came out as one sphere).
 std::vector<double> chart_roughness(const VertexDeviations& deviations, int chart_count,
                                     const std::vector<char>& beside_bend, const std::vector<char>& exact,
-                                    const std::vector<PlaneResidual>& residual, const std::vector<int>& component,
-                                    int component_count) {
-    // Under noise σ a deviation has a standard deviation of σ (median of its magnitude
-    // 0.674 σ), and a locally exact surface leaves an RMS of about 0.9 σ.
-    constexpr double kCalibration = 0.9 / 0.674;
+                                    const std::vector<double>& unmeasured) {
     std::vector<std::vector<double>> magnitudes(chart_count), away(chart_count);
-    std::vector<int> in_component(component_count, 0);
     for (std::size_t i = 0; i < deviations.magnitude.size(); ++i) {
         magnitudes[deviations.chart[i]].push_back(deviations.magnitude[i]);
-        ++in_component[component[deviations.chart[i]]];
         if (!beside_bend.empty() && !beside_bend[deviations.vertex[i]]) away[deviations.chart[i]].push_back(deviations.magnitude[i]);
     }
-    const double overall = kCalibration * median(deviations.magnitude);
-    std::vector<PlaneResidual> pooled(component_count);
-    for (int c = 0; c < chart_count; ++c)
-        pooled[component[c]].squares += residual[c].squares, pooled[component[c]].freedom += residual[c].freedom;
-    std::vector<double> fallback(component_count);
-    for (int k = 0; k < component_count; ++k)
-        fallback[k] = in_component[k] >= 30 ? overall : std::min(overall, plane_limit(pooled[k]));
     std::vector<double> roughness(chart_count);
     for (int c = 0; c < chart_count; ++c) {
         if (exact[c]) {
-            roughness[c] = kCalibration * median(std::move(beside_bend.empty() ? magnitudes[c] : away[c]));
+            roughness[c] = kDeviationCalibration * median(std::move(beside_bend.empty() ? magnitudes[c] : away[c]));
             continue;
         }
         if (2 * away[c].size() <= magnitudes[c].size() && away[c].size() >= 30) magnitudes[c].swap(away[c]);
-        roughness[c] = magnitudes[c].size() >= 30 ? kCalibration * median(std::move(magnitudes[c])) : fallback[component[c]];
+        roughness[c] = magnitudes[c].size() >= 30 ? kDeviationCalibration * median(std::move(magnitudes[c])) : unmeasured[c];
     }
     return roughness;
 }
@@ -611,11 +612,9 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     find_charts(g, reliable, out.exact, out);
     const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
     const std::vector<char> exact = exact_groups(model, out.chart, out.chart_count);
-    const std::vector<PlaneResidual> residual = plane_residuals(model, out.chart, out.chart_count);
-    std::vector<int> chart_component(out.chart_count);
-    for (int f = 0; f < n; ++f) chart_component[out.chart[f]] = model.component[f];
+    const std::vector<double> unmeasured = unmeasured_roughness(model, deviations, out.chart, out.chart_count);
     auto roughness_beside = [&](const std::vector<char>& beside_bend) {
-        return chart_roughness(deviations, out.chart_count, beside_bend, exact, residual, chart_component, model.component_count);
+        return chart_roughness(deviations, out.chart_count, beside_bend, exact, unmeasured);
     };
     std::vector<double> per_chart = roughness_beside({});
 
