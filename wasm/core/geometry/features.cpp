@@ -370,8 +370,8 @@ constexpr double kLeftByExactSurface = 0.9;
 constexpr double kDeviationCalibration = kLeftByExactSurface / 0.674;
 
 // The most noise a plane fitted to k points leaves room for, when it leaves them a sum of
-// squared distances `squares` over `freedom` = k − 3 degrees of freedom (summed over
-// several planes, both add up): the upper 95 % confidence limit of σ, by the Wilson–Hilferty
+// squared distances `squares` over `freedom` = k − 3 degrees of freedom (for several
+// planes, the sums of both): the upper 95 % confidence limit of σ, by the Wilson–Hilferty
 // approximation of the χ² quantile (below the true one at few degrees of freedom: a looser
 // limit), as the RMS an exact surface leaves; infinite without freedom. On a curved
 // surface the plane leaves its bend too: the limit only errs high.
