@@ -384,22 +384,28 @@ double plane_noise_limit(double squares, double freedom) {
 
 // Per chart, the roughness of a chart too small for a median of its own (30 vertices):
 // the whole mesh's median; in a connected component without 30 measured vertices, no more
-// than plane_noise_limit over its charts, each fitted by its own plane. A slab beside a
-// small noisy plate, apart from it, no vertex of its faces (a dozen triangles) with two
-// rings in its own chart, took the plate's median, read across creases the noise garbles:
-// 4.5 σ, within which one elliptic cylinder explained the whole slab. (Each chart's own
-// plane bounding its roughness, even at 95 % confidence, put some of a fine noisy part's
-// hundreds of noise charts below its noise, and Lloyd grew regions into them; so did each
-// component's own median, on the noisy plate assembly's fine plates.)
+// than plane_noise_limit over its charts, each fitted by its own plane; and a chart of
+// faces all `wide` against the noise (per face: no noise made that chart), no more than
+// its own plane's limit. A slab beside a small noisy plate, apart from it, no vertex of
+// its faces (a dozen triangles) with two rings in its own chart, took the plate's median,
+// read across creases the noise garbles: 4.5 σ, within which one elliptic cylinder
+// explained the whole slab; a coarse noisy countersunk plate's face and sides took the
+// median of its countersink's chart, read beside bends, and were one ellipsoid. (Every
+// small chart bounded by its own plane, even at 95 % confidence, put some of a fine noisy
+// part's hundreds of noise charts below its noise, and Lloyd grew regions into them; so
+// did each component's own median, on the noisy plate assembly's fine plates.)
 std::vector<double> unmeasured_roughness(const Model& model, const VertexDeviations& deviations,
-                                         const std::vector<int>& chart, int chart_count) {
+                                         const std::vector<int>& chart, int chart_count, const std::vector<char>& wide) {
     std::vector<int> component(chart_count, 0);
     for (int f = 0; f < model.face_count(); ++f) component[chart[f]] = model.component[f];
-    std::vector<int> measured(model.component_count, 0);
-    for (int c : deviations.chart) ++measured[component[c]];
+    std::vector<int> measured(model.component_count, 0), chart_measured(chart_count, 0);
+    for (int c : deviations.chart) ++measured[component[c]], ++chart_measured[c];
+    std::vector<char> wide_chart(chart_count, 1);
+    for (int f = 0; f < model.face_count(); ++f) wide_chart[chart[f]] &= wide[f];
+    std::vector<double> own(chart_count, std::numeric_limits<double>::infinity());
     std::vector<std::pair<int, int>> members;  // (chart, vertex) of unmeasured components, each once
     for (int f = 0; f < model.face_count(); ++f)
-        if (measured[model.component[f]] < 30)
+        if (measured[model.component[f]] < 30 || (wide_chart[chart[f]] && chart_measured[chart[f]] < 30))
             for (int v : model.triangles[f]) members.emplace_back(chart[f], v);
     std::sort(members.begin(), members.end());
     members.erase(std::unique(members.begin(), members.end()), members.end());
@@ -417,14 +423,17 @@ std::vector<double> unmeasured_roughness(const Model& model, const VertexDeviati
             scatter += d * d.transpose();
         }
         const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter, Eigen::EigenvaluesOnly);
-        squares[component[c]] += std::max(0.0, solver.eigenvalues()[0]);
+        const double least = std::max(0.0, solver.eigenvalues()[0]);
+        if (wide_chart[c]) own[c] = plane_noise_limit(least, k - 3);
+        if (measured[component[c]] >= 30) continue;
+        squares[component[c]] += least;
         freedom[component[c]] += k - 3;
     }
     const double overall = kDeviationCalibration * median(deviations.magnitude);
     std::vector<double> roughness(chart_count);
     for (int c = 0; c < chart_count; ++c) {
         const int k = component[c];
-        roughness[c] = measured[k] >= 30 ? overall : std::min(overall, plane_noise_limit(squares[k], freedom[k]));
+        roughness[c] = std::min(own[c], measured[k] >= 30 ? overall : std::min(overall, plane_noise_limit(squares[k], freedom[k])));
     }
     return roughness;
 }
@@ -591,13 +600,16 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     }
     std::vector<int> averaged(n, 1);  // faces each face's starting normal averages
     std::vector<Vec3> start = rings > 0 ? guidance_normals(g, raw, model.areas, rings, averaged) : raw;
-    // A face the noise tilts by half the range or less on its own keeps its own normal: the
-    // median face's patches took a slab beside a small noisy part whole, its sides and far
-    // face too, one normal. (Fewer rings for faces between, as their width would have it,
-    // left the noisy pipe junction's larger faces noisier than that says: 344 charts.)
+    // Wide faces, which the noise tilts by half the range or less on their own, keep their
+    // own normals: the median face's patches took a slab beside a small noisy part whole,
+    // its sides and far face too, one normal. (Fewer rings for faces between, as their width
+    // would have it, left the noisy pipe junction's larger faces noisier than that says:
+    // 344 charts.) Nor can noise make a chart of them (unmeasured_roughness).
+    std::vector<char> wide(n);
+    for (int f = 0; f < n; ++f) wide[f] = 2 * noise <= 0.5 * options.filter_range * altitude[f];
     if (rings > 0)
         for (int f = 0; f < n; ++f)
-            if (2 * noise <= 0.5 * options.filter_range * altitude[f]) start[f] = raw[f], averaged[f] = 1;
+            if (wide[f]) start[f] = raw[f], averaged[f] = 1;
     std::vector<char> reliable(n);
     std::vector<double> range(n);  // the filter's normal difference of half weight, per face
     for (int f = 0; f < n; ++f) {
@@ -612,7 +624,7 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     find_charts(g, reliable, out.exact, out);
     const VertexDeviations deviations = vertex_deviations(model, out.normals, out);
     const std::vector<char> exact = exact_groups(model, out.chart, out.chart_count);
-    const std::vector<double> unmeasured = unmeasured_roughness(model, deviations, out.chart, out.chart_count);
+    const std::vector<double> unmeasured = unmeasured_roughness(model, deviations, out.chart, out.chart_count, wide);
     auto roughness_beside = [&](const std::vector<char>& beside_bend) {
         return chart_roughness(deviations, out.chart_count, beside_bend, exact, unmeasured);
     };
