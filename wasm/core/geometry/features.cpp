@@ -368,6 +368,8 @@ VertexDeviations vertex_deviations(const Model& model, const std::vector<Vec3>& 
 // magnitude 0.674 σ), and a locally exact surface leaves an RMS of about 0.9 σ.
 constexpr double kLeftByExactSurface = 0.9;
 constexpr double kDeviationCalibration = kLeftByExactSurface / 0.674;
+// Measured vertices a chart needs for a median of its own.
+constexpr std::size_t kOwnMedian = 30;
 
 // The most noise a plane fitted to k points leaves room for, when it leaves them a sum of
 // squared distances `squares` over `freedom` = k − 3 degrees of freedom (for several
@@ -382,7 +384,7 @@ double plane_noise_limit(double squares, double freedom) {
     return kLeftByExactSurface * std::sqrt(squares / (freedom * root * root * root));
 }
 
-// Per chart, the roughness of a chart too small for a median of its own (30 vertices):
+// Per chart, the roughness of a chart too small for a median of its own (kOwnMedian):
 // the whole mesh's median; in a connected component without 30 measured vertices, no more
 // than plane_noise_limit over its charts, each fitted by its own plane; and a chart of
 // faces all `wide` against the noise (per face: no noise made that chart), no more than
@@ -398,14 +400,16 @@ std::vector<double> unmeasured_roughness(const Model& model, const VertexDeviati
                                          const std::vector<int>& chart, int chart_count, const std::vector<char>& wide) {
     std::vector<int> component(chart_count, 0);
     for (int f = 0; f < model.face_count(); ++f) component[chart[f]] = model.component[f];
-    std::vector<int> measured(model.component_count, 0), chart_measured(chart_count, 0);
+    std::vector<std::size_t> measured(model.component_count, 0), chart_measured(chart_count, 0);
     for (int c : deviations.chart) ++measured[component[c]], ++chart_measured[c];
     std::vector<char> wide_chart(chart_count, 1);
     for (int f = 0; f < model.face_count(); ++f) wide_chart[chart[f]] &= wide[f];
     std::vector<double> own(chart_count, std::numeric_limits<double>::infinity());
-    std::vector<std::pair<int, int>> members;  // (chart, vertex) of unmeasured components, each once
+    // (chart, vertex), each once, of the charts whose planes bound their noise: those of
+    // unmeasured components, and unmeasured charts of wide faces.
+    std::vector<std::pair<int, int>> members;
     for (int f = 0; f < model.face_count(); ++f)
-        if (measured[model.component[f]] < 30 || (wide_chart[chart[f]] && chart_measured[chart[f]] < 30))
+        if (measured[model.component[f]] < kOwnMedian || (wide_chart[chart[f]] && chart_measured[chart[f]] < kOwnMedian))
             for (int v : model.triangles[f]) members.emplace_back(chart[f], v);
     std::sort(members.begin(), members.end());
     members.erase(std::unique(members.begin(), members.end()), members.end());
@@ -425,16 +429,16 @@ std::vector<double> unmeasured_roughness(const Model& model, const VertexDeviati
         const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter, Eigen::EigenvaluesOnly);
         const double least = std::max(0.0, solver.eigenvalues()[0]);
         if (wide_chart[c]) own[c] = plane_noise_limit(least, k - 3);
-        if (measured[component[c]] >= 30) continue;
+        if (measured[component[c]] >= kOwnMedian) continue;
         squares[component[c]] += least;
         freedom[component[c]] += k - 3;
     }
+    std::vector<double> part(model.component_count, std::numeric_limits<double>::infinity());
+    for (int k = 0; k < model.component_count; ++k)
+        if (measured[k] < kOwnMedian) part[k] = plane_noise_limit(squares[k], freedom[k]);
     const double overall = kDeviationCalibration * median(deviations.magnitude);
     std::vector<double> roughness(chart_count);
-    for (int c = 0; c < chart_count; ++c) {
-        const int k = component[c];
-        roughness[c] = std::min(own[c], measured[k] >= 30 ? overall : std::min(overall, plane_noise_limit(squares[k], freedom[k])));
-    }
+    for (int c = 0; c < chart_count; ++c) roughness[c] = std::min({overall, own[c], part[component[c]]});
     return roughness;
 }
 
@@ -462,8 +466,8 @@ std::vector<double> chart_roughness(const VertexDeviations& deviations, int char
             roughness[c] = kDeviationCalibration * median(std::move(beside_bend.empty() ? magnitudes[c] : away[c]));
             continue;
         }
-        if (2 * away[c].size() <= magnitudes[c].size() && away[c].size() >= 30) magnitudes[c].swap(away[c]);
-        roughness[c] = magnitudes[c].size() >= 30 ? kDeviationCalibration * median(std::move(magnitudes[c])) : unmeasured[c];
+        if (2 * away[c].size() <= magnitudes[c].size() && away[c].size() >= kOwnMedian) magnitudes[c].swap(away[c]);
+        roughness[c] = magnitudes[c].size() >= kOwnMedian ? kDeviationCalibration * median(std::move(magnitudes[c])) : unmeasured[c];
     }
     return roughness;
 }
