@@ -16,7 +16,17 @@ namespace vqsa {
 
 namespace {
 
-bool on_two_parts(const Classification& c, const Samples& s, double margin) {
+// Whether a candidate's samples lie on two parts of its surface, so that no region could be
+// it. Under noise a cone's nappes count as two parts wherever its apex: classify takes a
+// region whose centroid lies within twice its RMS radius of the apex to run through it,
+// and a noisy octagon bore's face came out a cone of half-angle 89.9° whose apex lay
+// beside the face, inside that bound; the two nappes, apart there by less than the noise,
+// each held the vertices on its side, at half the plane's RMS. A region through a cone's
+// apex (a pencil's tip) lies on one nappe. On a mesh judged clean, flat cones straddled
+// regions over two faces, which are validity's to split (docs/METHOD.md §6).
+bool on_two_parts(Classification c, const Samples& s, double margin) {
+    if (s.noise > 0 && (c.type == QuadricType::cone || c.type == QuadricType::elliptic_cone)) c.nappes_apart = true;
+    if (!has_two_parts(c)) return false;
     PartWeights parts;
     for (std::size_t i = 0; i < s.points.size(); ++i) {
         const int side = part_of(c, s.points[i], margin);
@@ -135,8 +145,7 @@ std::optional<TypedFit> general_candidate(const Quadric& q, const Samples& s, co
     g.rms = selection_rms(s, q);
     g.parameters = degrees_of_freedom(g.type);
     const bool pair = g.type == QuadricType::intersecting_planes || g.type == QuadricType::parallel_planes;
-    const bool usable = g.type != QuadricType::empty && !pair &&
-                        !(has_two_parts(g.shape) && on_two_parts(g.shape, s, 2 * g.rms));
+    const bool usable = g.type != QuadricType::empty && !pair && !on_two_parts(g.shape, s, 2 * g.rms);
     if (!usable || !std::isfinite(g.rms)) return std::nullopt;
     return g;
 }
@@ -201,7 +210,7 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
         // Every candidate measured alike (Taubin's distance is below the true one, more so
         // away from the surface): a fair contest.
         const double rms = selection_rms(s, fit->quadric);
-        if (has_two_parts(shape) && on_two_parts(shape, s, 2 * rms)) return;
+        if (on_two_parts(shape, s, 2 * rms)) return;
         candidates.push_back({shape.type, fit->quadric, shape, rms, degrees_of_freedom(shape.type), true});
     };
     // Every type's fit, or, without rivals, only the imposed type's.
