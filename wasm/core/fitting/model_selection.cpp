@@ -19,7 +19,7 @@ namespace {
 // Whether a candidate's samples lie on two parts of its surface, so that no region could be
 // it. Under noise a cone's nappes count as two parts wherever its apex: classify takes a
 // region whose centroid lies within twice its RMS radius of the apex to run through it,
-// and a noisy octagon bore's face came out a cone of half-angle 89.9° whose apex lay
+// and a noisy octagon bore's face came out a cone of half-angle 89.8° whose apex lay
 // beside the face, inside that bound; the two nappes, apart there by less than the noise,
 // each held the vertices on its side, at half the plane's RMS. A region through a cone's
 // apex (a pencil's tip) lies on one nappe. On a mesh judged clean, flat cones straddled
