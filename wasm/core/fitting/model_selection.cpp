@@ -324,18 +324,27 @@ ModelChoice select_model(const Samples& s, const Quadric& general, const ModelSe
             (strays[i] <= kRunAway * kRunAway * (least + allowed) && strays[i] <= noise_bound ? kept : dropped)
                 .push_back(candidates[i]);
         if (!kept.empty()) candidates.swap(kept);
-        if (candidates.front().rms * candidates.front().rms <= exact2) {
-            // Where several types hold the vertices to rounding, the vertices cannot tell
-            // them apart (a band one facet tall holds two circles: on a cylinder, a sphere
-            // and many quadrics); a tessellation lays its edges along a surface's straight
-            // lines, so the one that also holds the edges' midpoints best, by the same
-            // criterion, is it.
+        // Where several types hold the vertices to rounding, the vertices cannot tell them
+        // apart (a band one facet tall holds two circles: on a cylinder, a sphere and many
+        // quadrics); a tessellation lays its edges along a surface's straight lines, so the
+        // one that also holds the edges' midpoints best, by the same criterion, is it. Under
+        // noise the vertices cannot tell the elementary types apart where those differ by
+        // less than the noise either: a noisy hole one facet tall was the sphere through its
+        // two circles, which leaves its vertical edges by h²/8r, less than σ; a thin plate's
+        // rim, whose two rows of vertices move along normals tilted by the plate's faces and
+        // fold like a cylinder's section, was a cylinder. So where the criterion chose an
+        // elementary type, the midpoints judge among the elementary types. Not among the
+        // general quadrics, which bend to noisy midpoints as to noisy vertices (judged by
+        // them too, spheres came out ellipsoids: bench/RESULTS.md §4).
+        const bool among_elementary = s.noise > 0 && elementary(candidates.front());
+        if (among_elementary || candidates.front().rms * candidates.front().rms <= exact2) {
+            auto eligible = [&](const TypedFit& c) { return among_elementary ? elementary(c) : c.rms * c.rms <= exact2; };
             const double m = static_cast<double>(s.edge_midpoints.size());
             auto with_edges = [&](const TypedFit& c) { return c.bic + m * std::log(midpoint_mean_square(s, c.quadric, true) + floor2); };
             auto best = candidates.begin();
             double best_score = with_edges(*best);
             for (auto c = candidates.begin() + 1; c != candidates.end(); ++c) {
-                if (!(c->rms * c->rms <= exact2)) continue;
+                if (!eligible(*c)) continue;
                 const double score = with_edges(*c);
                 if (score < best_score) best = c, best_score = score;
             }
