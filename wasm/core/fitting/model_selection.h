@@ -69,8 +69,9 @@ struct ModelSelectionOptions {
 // where the surface runs between the vertices: a candidate ten times farther from them
 // than another, beyond the tessellation's deviation, is dropped, however closely it holds
 // the vertices (a strip's two rows of vertices, a pin's two end circles, lie on many
-// quadrics); among the candidates left that are exact to the floor, they break the tie
-// (docs/METHOD.md §6). With a type imposed, the best candidate of that type
+// quadrics); among the candidates left that are exact to the floor, they break the tie,
+// and so they do under noise among the plane, sphere, cylinder and cone where the
+// criterion chose one of those (docs/METHOD.md §6). With a type imposed, the best candidate of that type
 // is chosen; std::invalid_argument when none could be fitted (a sphere through a flat
 // region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
