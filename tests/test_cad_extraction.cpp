@@ -517,10 +517,10 @@ TEST(CadExtraction, UnderNoiseAFaceTooSmallForANoiseOfItsOwnIsBoundedByItsPlane)
 
 TEST(CadExtraction, UnderNoiseAFaceIsNoFlatConeWhoseNappesStraddleIt) {
     // Under noise the octagon bore's face and the stepped block's bottom each came out a cone
-    // of half-angle 89.8–89.9° whose apex lay beside the face (within twice the region's radius of
-    // its centroid, where a region was taken to run through the apex), at half the plane's
-    // RMS: the two nappes, apart by less than the noise, each held the vertices on its side.
-    // A cone face lies on one nappe.
+    // of half-angle 89.8–89.9° whose apex lay beside the face (within twice the region's
+    // radius of its centroid, where a region was taken to run through the apex), at half the
+    // plane's RMS: the two nappes, apart by less than the noise, each held the vertices on
+    // its side. A cone face lies on one nappe.
     struct Case {
         std::string part;
         double detail, noise;

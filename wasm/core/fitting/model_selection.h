@@ -71,9 +71,9 @@ struct ModelSelectionOptions {
 // the vertices (a strip's two rows of vertices, a pin's two end circles, lie on many
 // quadrics); among the candidates left that are exact to the floor, they break the tie,
 // and so they do under noise among the plane, sphere, cylinder and cone where the
-// criterion chose one of those (docs/METHOD.md §6). With a type imposed, the best candidate of that type
-// is chosen; std::invalid_argument when none could be fitted (a sphere through a flat
-// region).
+// criterion chose one of those (docs/METHOD.md §6). With a type imposed, the best
+// candidate of that type is chosen; std::invalid_argument when none could be fitted (a
+// sphere through a flat region).
 ModelChoice select_model(const Samples& vertices, const Quadric& general, const ModelSelectionOptions& options = {});
 
 // The RMS distance by which candidates compete: Taubin's, each point's capped at a few

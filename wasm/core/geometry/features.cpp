@@ -385,10 +385,10 @@ double plane_noise_limit(double squares, double freedom) {
 }
 
 // Per chart, the roughness of a chart too small for a median of its own (kOwnMedian):
-// the whole mesh's median; in a connected component without 30 measured vertices, no more
-// than plane_noise_limit over its charts, each fitted by its own plane; and a chart of
-// faces all `wide` against the noise (per face: no noise made that chart), no more than
-// its own plane's limit. A slab beside a small noisy plate, apart from it, no vertex of
+// the whole mesh's median; in a connected component without as many measured vertices,
+// no more than plane_noise_limit over its charts, each fitted by its own plane; and a
+// chart of faces all `wide` against the noise (per face: no noise made that chart), no
+// more than its own plane's limit. A slab beside a small noisy plate, apart from it, no vertex of
 // its faces (a dozen triangles) with two rings in its own chart, took the plate's median,
 // read across creases the noise garbles: 4.5 σ, within which one elliptic cylinder
 // explained the whole slab; a coarse noisy countersunk plate's face and sides took the
