@@ -8,8 +8,32 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 using namespace vqsa;
+
+namespace {
+
+// The small rounded plate beside its slab, in a random pose, under noise of σ `noise` of the
+// whole's diagonal. The slab's faces are the part's last six: its top, bottom and sides.
+struct PlateAndSlab {
+    Part part;
+    Model model;
+    Features features;
+    int first_slab_face;
+};
+
+PlateAndSlab noisy_rounded_plate(double detail, double noise) {
+    PartOptions options;
+    options.detail = detail, options.noise = noise, options.random_pose = true;
+    PlateAndSlab out{make_part("rounded_plate", options), {}, {}, 0};
+    out.model = make_model(out.part.mesh);
+    out.features = detect_features(out.model);
+    out.first_slab_face = static_cast<int>(out.part.surfaces.size()) - 6;
+    return out;
+}
+
+}  // namespace
 
 TEST(Features, FacetsOfACoarseCylinderAreChordsNotChamferEdges) {
     // A 12-gon cylinder, as a CAD export with a coarse angular tolerance meshes a small hole:
@@ -118,13 +142,8 @@ TEST(Features, AFaceWideAgainstTheNoiseKeepsItsOwnNormal) {
     // mesh, by the median face, so the slab beside the plate, its triangles hundreds of times
     // wider than the noise, took patches of six rings too: its top, bottom and sides one
     // normal, one chart, and Lloyd fitted the slab as one elliptic cylinder.
-    PartOptions options;
-    options.noise = 0.001, options.random_pose = true;
-    const Part part = make_part("rounded_plate", options);
-    const Model model = make_model(part.mesh);
+    const auto [part, model, features, first_slab_face] = noisy_rounded_plate(1, 0.001);
     ASSERT_EQ(static_cast<std::size_t>(model.face_count()), part.face.size());
-    const Features features = detect_features(model);
-    const int first_slab_face = static_cast<int>(part.surfaces.size()) - 6;  // its top, bottom and sides
     int slab = 0;
     for (int f = 0; f < model.face_count(); ++f) {
         if (part.face[f] < first_slab_face) continue;
@@ -139,13 +158,9 @@ TEST(Features, APartWithoutANoiseOfItsOwnTakesWhatItsPlanesLeave) {
     // dozen triangles or two) has the two rings of a local fit, so its charts took the
     // whole mesh's median, read on the plate, whose facets the noise garbles across its
     // creases: 4.5 σ, within which one elliptic cylinder explained the whole slab.
-    PartOptions options;
-    options.detail = 0.6, options.noise = 0.001, options.random_pose = true;
-    const Part part = make_part("rounded_plate", options);
-    const Model model = make_model(part.mesh);
-    const Features features = detect_features(model);
-    const double sigma = options.noise * bounding_box(part.mesh).diagonal();
-    const int first_slab_face = static_cast<int>(part.surfaces.size()) - 6;
+    const double noise = 0.001;
+    const auto [part, model, features, first_slab_face] = noisy_rounded_plate(0.6, noise);
+    const double sigma = noise * bounding_box(part.mesh).diagonal();
     int slab = 0;
     for (int f = 0; f < model.face_count(); ++f) {
         if (part.face[f] < first_slab_face) continue;
@@ -154,6 +169,26 @@ TEST(Features, APartWithoutANoiseOfItsOwnTakesWhatItsPlanesLeave) {
         // 1.3 times the estimate.
         EXPECT_LT(features.roughness[f] * model.frame.scale, 1.5 * sigma) << "face " << f;
         EXPECT_GT(features.roughness[f] * model.frame.scale, 0.5 * sigma) << "face " << f;
+    }
+    EXPECT_EQ(slab, 32);
+}
+
+TEST(Features, AThinStripBetweenWideFacesKeepsItsOwnNormal) {
+    // Noise of the small rounded plate's facets' size (σ 0.2 % of the whole's diagonal)
+    // makes the filter start every narrow face from the mean normal of the most consistent
+    // patch near it. The slab's sides are two triangles each, 0.5 tall against the slab's
+    // 7 × 5: the most consistent patch near them lay on the top or the bottom, 90° away, and
+    // the top's chart took a triangle of each of two sides. A side's own normal is within a
+    // few degrees of the truth: each slab face must be charts of its own.
+    const auto [part, model, features, first_slab_face] = noisy_rounded_plate(0.4, 0.002);
+    std::vector<int> face_of_chart(features.chart_count, -1);
+    int slab = 0;
+    for (int f = 0; f < model.face_count(); ++f) {
+        if (part.face[f] < first_slab_face) continue;
+        ++slab;
+        int& owner = face_of_chart[features.chart[f]];
+        if (owner < 0) owner = part.face[f];
+        EXPECT_EQ(owner, part.face[f]) << "triangle " << f << " shares a chart with another face";
     }
     EXPECT_EQ(slab, 32);
 }
