@@ -195,6 +195,48 @@ std::vector<Vec3> guidance_normals(const DualGraph& g, const std::vector<Vec3>& 
     return guidance;
 }
 
+// Per face, whether it keeps its own normal `raw` rather than its patch's mean `guidance`:
+// the `wide` faces, and those whose patch lies across a crease from them. A strip one
+// triangle wide between wide faces (a slab's side of two triangles) took the mean of a patch
+// on the wide face beside it, turned 90° from its own, and with it the slab's top and sides
+// fell into one chart. A guidance turned from the face's own normal by more than the crease
+// angle, and by more than the noise turns the face, is another face's. Noise turns a face of
+// altitude h by about 2σ/h, and by kTiltsAcross times that almost never (the noisy L-bracket
+// at detail 3, σ 0.2 %: one of its 38K faces, against 150 beyond three). Not by less than
+// the crease angle: on a coarse curved face a patch's mean turns with the surface.
+// Such a face takes its neighbours along: those whose guidance is turned beyond the crease
+// angle too, and whose own normal lies nearer its own than their guidance. The noise
+// criterion alone, on a cylinder's strips beside a flat end, took the wider strips and left
+// the narrower on the end's normal between them: 200 charts of a few faces on the noisy pipe
+// junction (abc_pipe_junction.stl, σ 0.1 %), 14–31 before, 28–56 so.
+std::vector<char> own_normals(const DualGraph& g, const std::vector<Vec3>& raw, const std::vector<Vec3>& guidance,
+                              const std::vector<char>& wide, const std::vector<double>& altitude, double noise,
+                              double crease_angle) {
+    constexpr double kTiltsAcross = 6;
+    const int n = static_cast<int>(raw.size());
+    std::vector<char> own(n, 0);
+    std::vector<int> stack;
+    for (int f = 0; f < n; ++f) {
+        const double noise_turn = kTiltsAcross * 2 * noise / std::max(altitude[f], 1e-300);
+        const double across = std::max(noise_turn, crease_angle * M_PI / 180);
+        if (wide[f]) own[f] = 1;
+        else if (across < M_PI && guidance[f].dot(raw[f]) < portable::cos(across)) own[f] = 1, stack.push_back(f);
+    }
+    const double cos_crease = crease_cosine(crease_angle);
+    while (!stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            if (own[h] || !(guidance[h].dot(raw[h]) < cos_crease) || !(raw[h].dot(raw[f]) > raw[h].dot(guidance[h])))
+                continue;
+            own[h] = 1;
+            stack.push_back(h);
+        }
+    }
+    return own;
+}
+
 // Creases: dual links whose (filtered) normals differ by more than the crease angle.
 // Noise leaves spurious creases inside faces: a crease is confirmed only if the mean
 // normals of the faces around each side (two rings, not crossing creases) still differ
@@ -611,42 +653,9 @@ Features detect_features(const Model& model, const FeatureOptions& options) {
     // 344 charts.) Nor can noise make a chart of them (unmeasured_roughness).
     std::vector<char> wide(n);
     for (int f = 0; f < n; ++f) wide[f] = 2 * noise <= 0.5 * options.filter_range * altitude[f];
-    // Nor do faces whose patch lies across a crease from them: a strip one triangle wide
-    // between wide faces (a slab's side of two triangles) took the mean of a patch on the
-    // wide face beside it, turned 90° from its own, and with it the slab's top and sides
-    // fell into one chart. A guidance turned from the face's own normal by more than the
-    // crease angle, and by more than the noise turns the face, is another face's. Noise
-    // turns a face by about 2σ/h, and by kTiltsAcross times that almost never (the noisy
-    // L-bracket at detail 3, σ 0.2 %: one of its 38K faces, against 150 beyond three). Not
-    // by less than the crease angle: on a coarse curved face a patch's mean turns with the
-    // surface.
-    // Such a face takes its neighbours along: those whose guidance is turned beyond the
-    // crease angle too, and whose own normal lies nearer its own than their guidance. The
-    // noise criterion alone, on a cylinder's strips beside a flat end, took the wider strips
-    // and left the narrower on the end's normal between them: 200 charts of a few faces on
-    // the noisy pipe junction (abc_pipe_junction.stl, σ 0.1 %), 14–31 before, 28–56 so.
-    constexpr double kTiltsAcross = 6;
+    // Nor do faces whose patch lies across a crease from them (own_normals).
     if (rings > 0) {
-        std::vector<char> own(n, 0);
-        std::vector<int> stack;
-        for (int f = 0; f < n; ++f) {
-            const double noise_turn = kTiltsAcross * 2 * noise / std::max(altitude[f], 1e-300);
-            const double across = std::max(noise_turn, options.crease_angle * M_PI / 180);
-            if (wide[f]) own[f] = 1;
-            else if (across < M_PI && start[f].dot(raw[f]) < portable::cos(across)) own[f] = 1, stack.push_back(f);
-        }
-        const double cos_crease = crease_cosine(options.crease_angle);
-        while (!stack.empty()) {
-            const int f = stack.back();
-            stack.pop_back();
-            for (int e = g.begin(f); e < g.end(f); ++e) {
-                const int h = g.neighbor[e];
-                if (own[h] || !(start[h].dot(raw[h]) < cos_crease) || !(raw[h].dot(raw[f]) > raw[h].dot(start[h])))
-                    continue;
-                own[h] = 1;
-                stack.push_back(h);
-            }
-        }
+        const std::vector<char> own = own_normals(g, raw, start, wide, altitude, noise, options.crease_angle);
         for (int f = 0; f < n; ++f)
             if (own[f]) start[f] = raw[f], averaged[f] = 1;
     }
