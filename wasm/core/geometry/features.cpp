@@ -214,15 +214,16 @@ std::vector<char> own_normals(const DualGraph& g, const std::vector<Vec3>& raw, 
                               double crease_angle) {
     constexpr double kTiltsAcross = 6;
     const int n = static_cast<int>(raw.size());
+    const double cos_crease = crease_cosine(crease_angle);
     std::vector<char> own(n, 0);
     std::vector<int> stack;
     for (int f = 0; f < n; ++f) {
         const double noise_turn = kTiltsAcross * 2 * noise / std::max(altitude[f], 1e-300);
-        const double across = std::max(noise_turn, crease_angle * M_PI / 180);
+        const double cosine = guidance[f].dot(raw[f]);
         if (wide[f]) own[f] = 1;
-        else if (across < M_PI && guidance[f].dot(raw[f]) < portable::cos(across)) own[f] = 1, stack.push_back(f);
+        else if (noise_turn < M_PI && cosine < cos_crease && cosine < portable::cos(noise_turn))
+            own[f] = 1, stack.push_back(f);
     }
-    const double cos_crease = crease_cosine(crease_angle);
     while (!stack.empty()) {
         const int f = stack.back();
         stack.pop_back();
@@ -426,18 +427,18 @@ double plane_noise_limit(double squares, double freedom) {
     return kLeftByExactSurface * std::sqrt(squares / (freedom * root * root * root));
 }
 
-// Per chart, the roughness of a chart too small for a median of its own (kOwnMedian):
-// the whole mesh's median; in a connected component without as many measured vertices,
-// no more than plane_noise_limit over its charts, each fitted by its own plane; and a
-// chart of faces all `wide` against the noise (per face: no noise made that chart), no
-// more than its own plane's limit. A slab beside a small noisy plate, apart from it, no vertex of
-// its faces (a dozen triangles) with two rings in its own chart, took the plate's median,
-// read across creases the noise garbles: 4.5 σ, within which one elliptic cylinder
-// explained the whole slab; a coarse noisy countersunk plate's face and sides took the
-// median of its countersink's chart, read beside bends, and were one ellipsoid. (Every
-// small chart bounded by its own plane, even at 95 % confidence, put some of a fine noisy
-// part's hundreds of noise charts below its noise, and Lloyd grew regions into them; so
-// did each component's own median, on the noisy plate assembly's fine plates.)
+// Per chart, the roughness of a chart too small for a median of its own (kOwnMedian): the
+// whole mesh's median; in a connected component without as many measured vertices, no more
+// than plane_noise_limit over its charts, each fitted by its own plane; and a chart of
+// faces all `wide` against the noise (per face: no noise made that chart), no more than its
+// own plane's limit. A slab beside a small noisy plate, apart from it, no vertex of its
+// faces (a dozen triangles) with two rings in its own chart, took the plate's median, read
+// across creases the noise garbles: 4.5 σ, within which one elliptic cylinder explained the
+// whole slab; a coarse noisy countersunk plate's face and sides took the median of its
+// countersink's chart, read beside bends, and were one ellipsoid. (Every small chart
+// bounded by its own plane, even at 95 % confidence, put some of a fine noisy part's
+// hundreds of noise charts below its noise, and Lloyd grew regions into them; so did each
+// component's own median, on the noisy plate assembly's fine plates.)
 std::vector<double> unmeasured_roughness(const Model& model, const VertexDeviations& deviations,
                                          const std::vector<int>& chart, int chart_count, const std::vector<char>& wide) {
     std::vector<int> component(chart_count, 0);
