@@ -9,14 +9,19 @@
 
 namespace vqsa {
 
-Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
-                       const std::vector<int>& faces, VertexWeight weight) {
+std::vector<int> face_vertices(const std::vector<Triangle>& triangles, const std::vector<int>& faces) {
     std::vector<int> vertices;
     vertices.reserve(3 * faces.size());
     for (int f : faces)
         for (int v : triangles[f]) vertices.push_back(v);
     std::sort(vertices.begin(), vertices.end());
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    return vertices;
+}
+
+Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                       const std::vector<int>& faces, VertexWeight weight) {
+    const std::vector<int> vertices = face_vertices(triangles, faces);
     std::vector<double> weights(vertices.size(), 1.0);
     if (weight == VertexWeight::area) {
         std::vector<double> shares(vertices.size(), 0.0);

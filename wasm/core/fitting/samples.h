@@ -58,6 +58,9 @@ enum class VertexWeight {
     area,
 };
 
+// Each vertex of the faces once, by index, in increasing order.
+std::vector<int> face_vertices(const std::vector<Triangle>& triangles, const std::vector<int>& faces);
+
 // Each vertex of the faces once.
 Samples vertex_samples(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
                        const std::vector<int>& faces, VertexWeight weight = VertexWeight::one);

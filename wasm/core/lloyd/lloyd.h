@@ -483,6 +483,14 @@ private:
         double noise;     // Σ face_noise_ over them
     };
     VertexSurface vertex_surface(const std::vector<Piece>& pieces) const;
+    // Whether two regions' vertices are plainly on no quadric together, from the larger
+    // one's vertex moments kept by its fingerprint: vertex_surface's first test, for a few
+    // of the smaller one's vertices' worth of work.
+    struct Printed {
+        int region;
+        std::uint64_t print;  // its fingerprint
+    };
+    bool plainly_on_no_quadric(Printed a, Printed b, const RegionFaces& faces) const;
     // What the vertex tests above found, by the regions they were asked of. They depend on
     // a region only through its faces, moments and noise, and the finish asks them of every
     // region and pair again after each merge, though the merge and its Lloyd stage change
@@ -617,6 +625,12 @@ private:
     int handful_batch_ = 0;  // how many handfuls, likewise
     // The vertex tests' answers (see fingerprint), by the regions asked.
     mutable std::unordered_map<std::uint64_t, VertexSurface> vertex_surfaces_;
+    // A region's vertices (sorted) and their moments, by fingerprint (plainly_on_no_quadric).
+    struct RegionVertices {
+        std::vector<int> sorted;
+        Moments moments{};
+    };
+    mutable std::unordered_map<std::uint64_t, RegionVertices> region_vertices_;
     mutable std::unordered_map<std::uint64_t, bool> vertices_on_one_surface_;
     mutable std::unordered_map<std::uint64_t, ExactRegion> exact_regions_;
     mutable std::unordered_map<std::uint64_t, Union> unions_;  // fit_pair's
