@@ -2144,8 +2144,13 @@ bool Lloyd::plainly_on_no_quadric(Printed a, Printed b, const RegionFaces& faces
     const std::vector<int> smaller = face_vertices(model_.triangles, faces[b.region]);
     auto found = region_vertices_.find(a.print);
     if (found == region_vertices_.end()) {
-        if (region_vertices_.size() >= kMemoLimit / 16) region_vertices_.clear();
         RegionVertices larger{face_vertices(model_.triangles, faces[a.region]), {}};
+        // Bounded by what is kept, not by how many: a large mesh's regions are large.
+        region_vertices_kept_ += larger.sorted.size();
+        if (region_vertices_kept_ > 4 * model_.points.size()) {
+            region_vertices_.clear();
+            region_vertices_kept_ = larger.sorted.size();
+        }
         for (int v : larger.sorted) add_to(larger.moments, point_moments(model_.points[v], 1));
         found = region_vertices_.emplace(a.print, std::move(larger)).first;
     }

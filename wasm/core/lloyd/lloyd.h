@@ -631,6 +631,7 @@ private:
         Moments moments{};
     };
     mutable std::unordered_map<std::uint64_t, RegionVertices> region_vertices_;
+    mutable std::size_t region_vertices_kept_ = 0;  // their vertices, in all
     mutable std::unordered_map<std::uint64_t, bool> vertices_on_one_surface_;
     mutable std::unordered_map<std::uint64_t, ExactRegion> exact_regions_;
     mutable std::unordered_map<std::uint64_t, Union> unions_;  // fit_pair's
