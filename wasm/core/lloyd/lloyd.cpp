@@ -204,7 +204,10 @@ void check_proxy_count(const Model& model, const LloydOptions& options) {
 }
 
 Lloyd::Lloyd(const Model& model, const LloydOptions& options)
-    : model_(model), options_(options), rng_(options.seed) {
+    : model_(model),
+      options_(options),
+      cos_crease_(crease_cosine(options.features.crease_angle)),
+      rng_(options.seed) {
     validate(options_);
     check_proxy_count(model, options_);
     FeatureOptions features = options_.features;
@@ -1192,7 +1195,7 @@ int Lloyd::side_of(const Quadric& q, int face, const Classification& c, double m
         // A plane region whose faces face both ways is a sheet seen from both sides: the
         // two faces of a plate thinner than the fit can resolve.
         const double side = features_.normals[face].dot(q.b().normalized());
-        if (std::abs(side) < crease_cosine(options_.features.crease_angle)) return 0;
+        if (std::abs(side) < cos_crease_) return 0;
         return side > 0 ? 1 : -1;
     }
     // Faces within the margin of where the parts separate are on neither.
@@ -1316,8 +1319,7 @@ Lloyd::Parts Lloyd::plane_pair(const std::vector<int>& faces, double error) cons
     // noise: 17 to 29). A spread is measured on min_quadric_faces faces or more: a handful
     // of a scan's faces bunch by chance (rocker_arm's last regions: groups of 2 to 5 faces
     // 34° to 40° apart, 7 to 18 spreads).
-    const double cos_crease = crease_cosine(options_.features.crease_angle);
-    if (c[0].dot(c[1]) > cos_crease) {
+    if (c[0].dot(c[1]) > cos_crease_) {
         double spread[2] = {0, 0}, area[2] = {0, 0};
         std::vector<int> group_faces[2];
         for (std::size_t k = 0; k < faces.size(); ++k) {
@@ -2054,10 +2056,15 @@ bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& f
         return chosen.special ? static_cast<int>(chosen.type) : -1;  // -1: a general quadric
     };
     const int larger = proxies_[a].area >= proxies_[b].area ? a : b;
+    Fnv key;
+    key.add(fingerprint(larger, faces));
+    for (double c : proxies_[larger].quadric.c) key.add(c);
+    const int larger_kind =
+        memoized(region_kinds_, key.h, [&] { return kind(faces[larger], proxies_[larger].quadric); });
     std::vector<int> both = faces[a];
     both.insert(both.end(), faces[b].begin(), faces[b].end());
     std::sort(both.begin(), both.end());
-    return kind(both, united) == kind(faces[larger], proxies_[larger].quadric);
+    return kind(both, united) == larger_kind;
 }
 
 bool Lloyd::lies_on(int region, double error, bool strip, double reference) const {
@@ -2336,9 +2343,8 @@ bool Lloyd::faces_both_ways(const Quadric& q, const std::vector<int>& a, const s
 }
 
 bool Lloyd::off_normal(const Quadric& q, int face) const {
-    const double cos_limit = crease_cosine(options_.features.crease_angle);
     const Vec3 g = q.gradient(model_.barycentres[face]);
-    return g.norm() > 0 && std::abs(features_.normals[face].dot(g)) < cos_limit * g.norm();
+    return g.norm() > 0 && std::abs(features_.normals[face].dot(g)) < cos_crease_ * g.norm();
 }
 
 bool Lloyd::strays(const Quadric& q, const std::vector<int>& region) const {

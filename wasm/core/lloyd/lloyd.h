@@ -547,6 +547,7 @@ private:
 
     const Model& model_;
     LloydOptions options_;
+    double cos_crease_ = -1;  // crease_cosine of the crease angle, asked per face (side_of, off_normal)
     Features features_;
     std::vector<std::vector<int>> chart_faces_;
     std::vector<char> seedable_;  // ChartFaces::seedable
@@ -636,6 +637,10 @@ private:
     mutable std::unordered_map<std::uint64_t, ExactRegion> exact_regions_;
     mutable std::unordered_map<std::uint64_t, Union> unions_;  // fit_pair's
     mutable std::unordered_map<std::uint64_t, std::optional<MergeCandidate>> same_surface_candidates_;
+    // keeps_type's model selection for the larger region of a pair, by its fingerprint and
+    // quadric: the finish asks it of one region beside each of its neighbours, and again
+    // after merges elsewhere (the noisy plate assembly at detail 3: half of 1 000 asks).
+    mutable std::unordered_map<std::uint64_t, int> region_kinds_;
     std::unordered_map<std::uint64_t, bool> stop_splits_;  // ensure_valid's verdicts
     Snapshot snapshot_;
     // At a fixed count: growing past it as the automatic count does, then merging back to it.
