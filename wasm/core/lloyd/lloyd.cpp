@@ -2004,7 +2004,7 @@ bool Lloyd::merge_same_surface(bool within_noise, std::vector<std::pair<int, int
             // Under noise, model selection types a piece of a plane as whatever bends within its
             // noise (a paraboloid over half a noisy flange's face): a plane that holds both parts
             // within their noise keeps no type but its own.
-            return c.exact || on_vertices || (noisy_ && q.is_plane()) || keeps_type(i, j, q, faces);
+            return c.exact || on_vertices || (noisy_ && q.is_plane()) || keeps_type(i, j, q, faces, prints);
         },
         merged, nullptr, limit);
 }
@@ -2044,7 +2044,8 @@ std::optional<Lloyd::MergeCandidate> Lloyd::same_surface_candidate(int i, int j,
     }, kMemoLimit / 4);
 }
 
-bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const {
+bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces,
+                       const std::vector<std::uint64_t>& prints) const {
     // Under noise a general quadric bends round a tangent edge within the noise of both
     // sides (a fillet of radius 25 σ and its plane fit one hyperbolic paraboloid): the data
     // then tell the two surfaces apart by their types, not by their errors. The union must
@@ -2057,7 +2058,7 @@ bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& f
     };
     const int larger = proxies_[a].area >= proxies_[b].area ? a : b;
     Fnv key;
-    key.add(fingerprint(larger, faces));
+    key.add(prints[larger]);
     for (double c : proxies_[larger].quadric.c) key.add(c);
     const int larger_kind =
         memoized(region_kinds_, key.h, [&] { return kind(faces[larger], proxies_[larger].quadric); });

@@ -456,8 +456,9 @@ private:
     // (joint/30 has nine slivers, a turned part at 50 thirty pieces): whether any.
     bool merge_at_count();
     // Whether the union of regions a and b (of quadric `united`) is the surface type the
-    // larger of them is (see lloyd.cpp).
-    bool keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces) const;
+    // larger of them is (see lloyd.cpp). `prints`: the regions' fingerprints.
+    bool keeps_type(int a, int b, const Quadric& united, const RegionFaces& faces,
+                    const std::vector<std::uint64_t>& prints) const;
     // Σ d(f, q) over the faces of region a, and of region b.
     std::array<double, 2> errors_against(const Quadric& q, int a, int b, const RegionFaces& faces) const;
     // Whether q explains regions a and b as one surface (see merge_same_surface); `error`:
