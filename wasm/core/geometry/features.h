@@ -30,7 +30,8 @@ struct Features {
     std::vector<int> chart;       // per face: its chart, the faces reachable without crossing a crease
     int chart_count = 0;
     // Per face: the RMS distance a locally exact surface would leave on it (the noise),
-    // estimated over its chart from local quadric fits at its vertices; unit frame.
+    // estimated over its chart from local quadric fits at its vertices (on an `exact`
+    // tessellation, no more than the largest sag of the chart's facets); unit frame.
     std::vector<double> roughness;
     // Per face: off a smooth surface by a coarse arc's sag beyond the stored precision (one
     // of its facets, or a flat face beside one), its noise or not.
