@@ -982,6 +982,22 @@ TEST(CadExtraction, ACoarseExportsChartHasNoNoiseBeyondItsFacetsSag) {
     }
 }
 
+TEST(CadExtraction, AnExactRegionOnTwoFacesACreaseApartIsSplitHoweverFewFacesTheSecondHas) {
+    // The rounded plate at detail 0.4, at its true count: the plate's bottom (12 triangles)
+    // and one of its sides (2 triangles, 90° from it) ended one region, which a pair of
+    // planes held exactly; the side's two triangles were too few to count as a second part
+    // at the stop, and the refit typed the region an elliptic cone (accuracy 0.969).
+    for (const char* variant : {"clean", "irregular"}) {
+        const CorpusCase c = corpus_case("rounded_plate", variant, 0.4);
+        const Part part = make_part(c.part, c.options);
+        const int faces = static_cast<int>(part.surfaces.size());
+        const Outcome o = run(part, counted(faces, c.options.seed));
+        EXPECT_EQ(o.regions, faces) << variant;
+        EXPECT_GE(o.accuracy, 0.999) << variant;
+        EXPECT_EQ(o.two_part, 0) << variant;
+    }
+}
+
 TEST(CadExtraction, AChamferedBoxsStripsAndCornersAreFound) {
     // Beyond the corpus: every edge of a box chamfered 45°, the strips two facets wide
     // between bends below the crease angle (one chart), and the corners single triangles:

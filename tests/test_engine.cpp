@@ -239,13 +239,17 @@ TEST(Engine, TeleportsLowerTheEnergy) {
 }
 
 TEST(Engine, ATeleportThatCannotMergeBackIsUndone) {
-    // A sheet folded up along one edge, the strip 3 % of its area: at one proxy the region
-    // lies on a pair of planes, its second part too small to split off. The teleport's proxy
+    // A sheet folded up by 30° along one edge, the strip 3 % of its area: at one proxy the
+    // region lies on a pair of planes, its second part too small to split off (a fold below
+    // the crease angle, as a facet column's; folded by more, the strip is a face of its own
+    // however small, and the stop splits it off: on_two_exact_faces). The teleport's proxy
     // took one face, and no union of the two regions was valid (two parts), so the run
     // returned two regions for the one asked. Now the teleport is undone.
     PolygonSoup soup;
     const Shape sheet = make_grid([](double u, double v) { return Vec3(u, v, 0); }, 0, 1, 0, 1, 30, 30);
-    const Shape strip = make_grid([](double u, double v) { return Vec3(1, u, 0.03 * v); }, 0, 1, 0, 1, 30, 2);
+    const double fold = M_PI / 6;
+    const Shape strip = make_grid([&](double u, double v) { return Vec3(1 + 0.03 * v * std::cos(fold), u, 0.03 * v * std::sin(fold)); },
+                                  0, 1, 0, 1, 30, 2);
     append(soup, sheet.mesh);
     append(soup, strip.mesh);
     const Mesh mesh = build_mesh(soup);

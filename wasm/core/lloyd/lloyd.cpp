@@ -1401,9 +1401,12 @@ void Lloyd::ensure_valid() {
         // is one plane, unless it is two a crease apart (on_plane_pair). Only here: exempted
         // from the splits during growth too, runs moved both ways (the noisy battery, 34
         // better, 22 worse), as any change to what Lloyd restarts from does under noise.
+        // An exact export's region on two faces is split whatever the second's area
+        // (on_two_exact_faces).
         auto splits = [&](int i, Parts* p) {
             if (one_noisy_plane(i, faces)) return on_plane_pair(i, faces, p);
-            return (invalid(i, faces, p) && p->both(proxies_[i].area, 0.05)) || on_plane_pair(i, faces, p);
+            return (invalid(i, faces, p) && p->both(proxies_[i].area, 0.05)) || on_plane_pair(i, faces, p) ||
+                   on_two_exact_faces(i, faces, p);
         };
         // A round changes a few regions and a stop may take hundreds of rounds (a gear's
         // teeth, a split each), so the verdicts are kept by what they depend on: the
@@ -1863,6 +1866,31 @@ bool Lloyd::invalid(int proxy, const RegionFaces& faces, Parts* result) const {
     const bool two = on_two_parts(q, p, proxies_[proxy].area);
     if (result) *result = std::move(p);
     return two;
+}
+
+bool Lloyd::on_two_exact_faces(int proxy, const RegionFaces& faces, Parts* result) const {
+    // The 5 % a second part needs at the stop (ensure_valid) spares a coarse tessellation's
+    // facet column beside a tangent plane, which bends from it by less than the crease
+    // angle. A second part that turns from the first by more than that, on a two-part
+    // quadric that holds both as closely as the file stores them, is no column of anything:
+    // it is a face of its own, however small. Kept, a Mendel90 z motor bracket's wall (7
+    // triangles) and the ledge of 18 slivers 90° from it were one region of two planes,
+    // which the refit then typed a cylinder 1.4 mm off a 61 mm part.
+    const Proxy& region = proxies_[proxy];
+    if (!exact_ || region.faces < options_.min_quadric_faces || !region.fitted ||
+        !(region.fit_error <= kStoredPrecision * kStoredPrecision))
+        return false;
+    const Classification c = classify_proxy(proxy);
+    if (!has_two_parts(c)) return false;
+    Parts p = parts(region.quadric, c, part_margin(proxy), faces[proxy]);
+    if (!p.both(region.area, 0, 1)) return false;
+    // Oriented: the two faces of a thin plate face apart too.
+    Vec3 normal[2] = {Vec3::Zero(), Vec3::Zero()};
+    for (int k : {0, 1})
+        for (int f : p.faces[k]) normal[k] += model_.areas[f] * features_.normals[f];
+    if (!(normal[0].dot(normal[1]) < cos_crease_ * normal[0].norm() * normal[1].norm())) return false;
+    if (result) *result = std::move(p);
+    return true;
 }
 
 bool Lloyd::one_noisy_plane(int proxy, const RegionFaces& faces) const {

@@ -315,6 +315,10 @@ private:
                         std::vector<std::pair<int, int>>* merged, double* merged_cost, int limit);
     // Whether a region (`faces`: of each region) lies on two parts of its quadric.
     bool invalid(int proxy, const RegionFaces& faces, Parts* parts = nullptr) const;
+    // On an exact export, whether a region lies on two parts of its quadric, which holds
+    // them within the stored precision, and the parts' faces turn from each other by more
+    // than the crease angle: two faces, however few faces the second has.
+    bool on_two_exact_faces(int proxy, const RegionFaces& faces, Parts* parts = nullptr) const;
     // Whether regions on a plane_pair are split (and refused as unions): with the automatic
     // count, which promises one region per surface, and below a target count, where a split
     // costs no merge (from the moment a run settles explained or stops below it, for the
