@@ -11,6 +11,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -1615,6 +1616,62 @@ void Lloyd::release_minor_parts() {
     }
 }
 
+std::vector<char> Lloyd::off_the_arc(const std::vector<int>& region, const std::vector<int>& piece,
+                                     const std::vector<double>& area) const {
+    // The facet columns of one arc are chords of one circle: two beside each other, of
+    // widths w_a and w_b (each its area over the edge they share), bend by (w_a + w_b) / 2r,
+    // however unequal the widths (an irregular tessellation's too). A plane running into
+    // the arc at a tangent meets the first column at half that column's bend, whatever its
+    // own width, and the pair gives a radius as many times the arc's as the plane is wider
+    // than a column. A piece whose every pair gives over twice the median radius of the
+    // region's pairs is no column of the arc (a Mendel90 bracket's wall of two long
+    // triangles and the seven facets of the rounded corner it runs into, one region that the
+    // refit typed a parabolic cylinder 0.7 mm off the wall); a piece with one pair near the
+    // median is (a cylinder's columns, each also beside the first facet ring of the cone at
+    // its end). Three pairs at least, for the median to be the arc's.
+    const int pieces = static_cast<int>(area.size());
+    std::vector<char> off(pieces, 0);
+    if (pieces < 4) return off;
+    const DualGraph& g = model_.graph;
+    const int label = labels_[region.front()];
+    std::vector<Vec3> normal(pieces, Vec3::Zero());
+    for (int f : region) {
+        const Triangle& t = model_.triangles[f];
+        normal[piece[f]] += (model_.points[t[1]] - model_.points[t[0]]).cross(model_.points[t[2]] - model_.points[t[0]]);
+    }
+    std::map<std::pair<int, int>, double> shared;  // edge length between two pieces
+    for (int f : region)
+        for (int e = g.begin(f); e < g.end(f); ++e) {
+            const int h = g.neighbor[e];
+            if (labels_[h] == label && piece[f] < piece[h]) shared[{piece[f], piece[h]}] += g.edge_length[e];
+        }
+    struct Pair {
+        int a, b;
+        double radius;
+    };
+    for (Vec3& n : normal) n.normalize();
+    std::vector<Pair> pairs;
+    for (const auto& [ab, length] : shared) {
+        const auto [a, b] = ab;
+        // 2 sin(bend / 2), the bend to within 1 % below 30° (square roots only: the same bits
+        // in every build).
+        const double bend = (normal[a] - normal[b]).norm();
+        if (length > 0 && bend > 0) pairs.push_back({a, b, (area[a] + area[b]) / length / (2 * bend)});
+    }
+    if (pairs.size() < 3) return off;
+    std::vector<double> radii;
+    for (const Pair& p : pairs) radii.push_back(p.radius);
+    std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+    const double median = radii[radii.size() / 2];
+    std::vector<char> on(pieces, 0);
+    for (const Pair& p : pairs) {
+        const bool column = p.radius <= 2 * median;
+        for (int k : {p.a, p.b}) (column ? on : off)[k] = 1;
+    }
+    for (int k = 0; k < pieces; ++k) off[k] = off[k] && !on[k];
+    return off;
+}
+
 bool Lloyd::release_planes() {
     // A region of a curved quadric may hold a plane face of an exact tessellation and the
     // strip of facets bending off it below the crease angle (a plate's top and the 45°
@@ -1655,6 +1712,8 @@ bool Lloyd::release_planes() {
             const int smaller = area[0] < area[1] ? 0 : 1;
             if (inflects(members[smaller], piece, 1 - smaller)) std::fill(leaves.begin(), leaves.end(), 1);
         }
+        const std::vector<char> off_arc = off_the_arc(faces[i], piece, area);
+        for (int k = 0; k < pieces; ++k) leaves[k] = leaves[k] || off_arc[k];
         for (int f : faces[i]) piece[f] = -1;
         // A region of plane faces only keeps its largest.
         if (std::all_of(leaves.begin(), leaves.end(), [](char c) { return c != 0; }))

@@ -341,9 +341,15 @@ private:
     bool part_handfuls();
     // With the automatic count, at the stop, before part_handfuls: a region fitted by a
     // curved quadric over faces of an exact tessellation lets its plane faces (pieces of
-    // exactly coplanar faces that are no strips, or both of two that meet at an inflection)
+    // exactly coplanar faces that are no strips or no columns of the arc the others make
+    // (off_the_arc), or both of two that meet at an inflection)
     // go, when that leaves less error (see lloyd.cpp). Whether any did.
     bool release_planes();
+    // Per piece of `region` (its pieces of coplanar faces, labelled in `piece`, of these
+    // areas): whether it is no facet column of the arc the others make, by the radius its
+    // bends to its neighbours imply (see lloyd.cpp).
+    std::vector<char> off_the_arc(const std::vector<int>& region, const std::vector<int>& piece,
+                                  const std::vector<double>& area) const;
     // Whether `faces` (a piece of coplanar faces of one region) bend one way from the faces
     // of piece `from` (per face of the model, as coplanar_pieces labels them) and only the
     // other way into the faces of other regions beyond them, over edges that are no creases.
