@@ -35,6 +35,15 @@ struct Fnv {
     }
 };
 
+// A region as a verdict kept across rounds depends on it: its faces (their fingerprint)
+// and its quadric.
+Fnv region_key(std::uint64_t fingerprint, const Quadric& quadric) {
+    Fnv key;
+    key.add(fingerprint);
+    for (double c : quadric.c) key.add(c);
+    return key;
+}
+
 // How many times its noise (RMS), or `precision`, a chart of a handful of faces must be
 // wide to be a face of its own under noise (wide_against_noise).
 constexpr double kFaceWidthInNoise = 20;
@@ -1413,9 +1422,7 @@ void Lloyd::ensure_valid() {
         // teeth, a split each), so the verdicts are kept by what they depend on: the
         // region (its fingerprint), its quadric and error, and whether plane pairs split.
         auto verdict = [&](int i) {
-            Fnv key;
-            key.add(fingerprint(i, faces));
-            for (double c : proxies_[i].quadric.c) key.add(c);
+            Fnv key = region_key(fingerprint(i, faces), proxies_[i].quadric);
             key.add(proxies_[i].error);
             key.add(static_cast<std::uint64_t>(plane_pairs_split()));
             return memoized(stop_splits_, key.h, [&] {
@@ -2144,11 +2151,8 @@ bool Lloyd::keeps_type(int a, int b, const Quadric& united, const RegionFaces& f
         return chosen.special ? static_cast<int>(chosen.type) : -1;  // -1: a general quadric
     };
     const int larger = proxies_[a].area >= proxies_[b].area ? a : b;
-    Fnv key;
-    key.add(prints[larger]);
-    for (double c : proxies_[larger].quadric.c) key.add(c);
-    const int larger_kind =
-        memoized(region_kinds_, key.h, [&] { return kind(faces[larger], proxies_[larger].quadric); });
+    const int larger_kind = memoized(region_kinds_, region_key(prints[larger], proxies_[larger].quadric).h,
+                                     [&] { return kind(faces[larger], proxies_[larger].quadric); });
     std::vector<int> both = faces[a];
     both.insert(both.end(), faces[b].begin(), faces[b].end());
     std::sort(both.begin(), both.end());
