@@ -1642,10 +1642,7 @@ std::vector<char> Lloyd::off_the_arc(const std::vector<int>& region, const std::
     const DualGraph& g = model_.graph;
     const int label = labels_[region.front()];
     std::vector<Vec3> normal(pieces, Vec3::Zero());
-    for (int f : region) {
-        const Triangle& t = model_.triangles[f];
-        normal[piece[f]] += (model_.points[t[1]] - model_.points[t[0]]).cross(model_.points[t[2]] - model_.points[t[0]]);
-    }
+    for (int f : region) normal[piece[f]] += area_normal(model_, f);
     std::map<std::pair<int, int>, double> shared;  // edge length between two pieces
     for (int f : region)
         for (int e = g.begin(f); e < g.end(f); ++e) {
