@@ -2315,11 +2315,18 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) con
         if (!(piece <= smooth_sag * smooth_sag) && !(piece <= 256 * least)) return out;
     // A pair of planes holds two planar regions' vertices exactly; one sheet of it does not
     // (as for a region: faces within the fit's error or the noise of where its parts meet
-    // count on neither).
+    // count on neither). Here a second part counts with any number of faces: the three a
+    // region's second part needs are against a few faces of noise along its rim, and these
+    // vertices lie on the quadric as closely as a file stores them. Mendel90's y-belt
+    // anchors: a wall's four faces and the sloping face beside it, two triangles holding 44 %
+    // of the area, on one pair of planes; merged, the run was fitted one plane (eight faces,
+    // too few for a quadric) with 1 900 times the error it was allowed, and later merges were
+    // judged against the energy it added.
     const Union u = {united, fit};
     const double area = std::max(u.moments[0], 1e-300);
     const double margin = 2 * std::sqrt(std::max(fit.mean_squared, noise / area));
-    out.one = !on_two_parts(fit.quadric, parts(fit.quadric, classify_union(u), margin, all), area);
+    const Parts p = parts(fit.quadric, classify_union(u), margin, all);
+    out.one = fit.quadric.is_plane() ? !on_two_parts(fit.quadric, p, area) : !p.both(area, options_.split_fraction, 1);
     return out;
 }
 
