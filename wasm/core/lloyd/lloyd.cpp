@@ -836,6 +836,7 @@ void Lloyd::finish() {
         if (merged) {
             double pair_noise = 0;
             for (const auto& [a, b] : pending.pairs) pair_noise += noise[a] + noise[b];
+            pending.cost = std::max(cost, 0.0);
             pending.margin = options_.convergence * pending.before.energy * static_cast<double>(pending.pairs.size()) +
                              std::max(cost, 0.0) + options_.noise_factor * options_.noise_factor * pair_noise;
             pending_merge_ = std::move(pending);
@@ -913,14 +914,18 @@ bool Lloyd::judge_merge() {
     // That room is the finish's, not each stage's: handfuls merged one at a time, each let
     // settle up to ten times the energy before it, compound (an ABB robot base of 26K faces
     // grew to 982 regions, and 156 handfuls merged one by one left its energy 600 times above
-    // where the finish began). So all the single handfuls' stages together may take the
-    // energy up to an order of magnitude above that, beyond what their unions cost; a stage
-    // that lowers it gives room back.
+    // where the finish began). So all the single handfuls' merges together may take the
+    // energy up to an order of magnitude above that; a stage that lowers it gives room back.
+    // What their unions cost counts in that room: left out of it, any handful merged
+    // whatever its union cost (Voron's pulley jig: two handfuls of two triangles each, on
+    // two planes, merged at ten times the energy the finish began at, and a region grew
+    // over its bottom and the chamfers beside it, 0.5 mm off them; Mendel90's light strip
+    // brackets ended with a projected RMS of 3e-5 of their diagonal, now 1e-8).
     const bool single_handful = pending.handful && pending.pairs.size() == 1;
     double drift = 0;
     auto stands_against = [&](double unexplained_after, double energy_after, double unexplained_before,
                               double energy_before) {
-        drift = energy_after - energy_before - pending.margin;
+        drift = energy_after - energy_before - pending.margin + pending.cost;
         return single_handful ? handful_drift_ + drift <= (kHandfulDrift - 1) * finish_energy_
                               : unexplained_after <= unexplained_before + pending.margin;
     };

@@ -421,9 +421,10 @@ private:
     double unexplained() const;
     // Judges the last finishing merge once Lloyd has settled around it: it stands if it
     // left no more error unexplained than before it (or than the same Lloyd stage leaves
-    // without it), plus the noise of its two regions; a single handful's, if it left at
-    // most kHandfulDrift times the energy, plus its union's cost and that noise (several
-    // handfuls at once, as other merges, plus their unions' cost). Else it is
+    // without it), plus the noise of its two regions; a single handful's, if all of them
+    // together, their unions' cost included, left at most kHandfulDrift times the energy
+    // the finish began at, plus their noise (several handfuls at once, as other merges,
+    // plus their unions' cost). Else it is
     // undone. True when that stage without it must run first (the partition is then the
     // one before the merge).
     bool judge_merge();
@@ -603,7 +604,7 @@ private:
     double wide_unexplained_ = 0;    // unexplained() before it
     bool finishing_ = false;              // automatic count: no more insertions, merges only
     double finish_energy_ = -1;           // the energy when the finish began
-    double handful_drift_ = 0;            // how far single handfuls' stages took it since, beyond their cost
+    double handful_drift_ = 0;            // how far single handfuls' merges took it since, their cost included
     bool below_target_ = false;  // a target count the run settled (explained) or stopped below
     double energy_before_insert_ = -1;    // to judge the last insertion (-1: none)
     int inserted_ = 0;
@@ -619,6 +620,7 @@ private:
         double unexplained = 0;  // unexplained() before it, or its reference stage's if more
         double energy = 0;       // the energy before it, likewise
         double margin = 0;       // per pair its noise and `convergence` of the energy; handfuls' cost
+        double cost = 0;         // handfuls': what their unions' fits cost (in `margin` too)
         bool handful = false;    // merge_handful's: one alone is judged by the energy (see judge_merge)
         Snapshot merged;         // Lloyd settled after it, while its reference stage runs
         double merged_unexplained = 0;
