@@ -838,7 +838,7 @@ void Lloyd::finish() {
             for (const auto& [a, b] : pending.pairs) pair_noise += noise[a] + noise[b];
             pending.cost = std::max(cost, 0.0);
             pending.margin = options_.convergence * pending.before.energy * static_cast<double>(pending.pairs.size()) +
-                             std::max(cost, 0.0) + options_.noise_factor * options_.noise_factor * pair_noise;
+                             pending.cost + options_.noise_factor * options_.noise_factor * pair_noise;
             pending_merge_ = std::move(pending);
             return start_operation(Operation::merge);
         }
