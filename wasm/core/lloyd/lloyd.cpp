@@ -1246,13 +1246,13 @@ Lloyd::Parts Lloyd::parts(const Quadric& q, const Classification& c, double marg
     return out;
 }
 
-bool Lloyd::on_two_parts(const Quadric& q, const Parts& p, double area) const {
+bool Lloyd::on_two_parts(const Quadric& q, const Parts& p, double area, int faces) const {
     if (q.is_plane()) {
         // A sheet's other side is a face, not a few faces of noise along the rim.
         const int minor = p.weight[0] < p.weight[1] ? 0 : 1;
         return p.count[minor] >= options_.min_quadric_faces && p.weight[minor] >= 0.01 * area;
     }
-    return p.both(area, options_.split_fraction);
+    return p.both(area, options_.split_fraction, faces);
 }
 
 Lloyd::Union Lloyd::fit_union(const std::vector<int>& regions) const {
@@ -2330,8 +2330,7 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) con
     const Union u = {united, fit};
     const double area = std::max(u.moments[0], 1e-300);
     const double margin = 2 * std::sqrt(std::max(fit.mean_squared, noise / area));
-    const Parts p = parts(fit.quadric, classify_union(u), margin, all);
-    out.one = fit.quadric.is_plane() ? !on_two_parts(fit.quadric, p, area) : !p.both(area, options_.split_fraction, 1);
+    out.one = !on_two_parts(fit.quadric, parts(fit.quadric, classify_union(u), margin, all), area, 1);
     return out;
 }
 

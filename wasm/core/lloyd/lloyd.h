@@ -272,8 +272,10 @@ private:
     // as c; faces within `margin` of where the parts separate count on neither.
     Parts parts(const Quadric& q, const Classification& c, double margin, int a, int b) const;
     Parts parts(const Quadric& q, const Classification& c, double margin, const std::vector<int>& faces) const;
-    // Whether faces of that area lie on two parts (enough of them to count; see invalid).
-    bool on_two_parts(const Quadric& q, const Parts& p, double area) const;
+    // Whether faces of that area lie on two parts (enough of them to count; see invalid). On
+    // a quadric of two parts, the second counts from `faces` faces and split_fraction of the
+    // area.
+    bool on_two_parts(const Quadric& q, const Parts& p, double area, int faces = 3) const;
     // Regions fitted as one.
     struct Union {
         Moments moments;
