@@ -379,6 +379,51 @@ TEST(CadExtraction, ASideOfTwoTrianglesIsNotMergedAwayWithTheCoarseCornersBeside
     }
 }
 
+TEST(CadExtraction, AWallAndTheSmallLedgeBesideItAreTwoPlanes) {
+    // A tooth's slanted wall (four triangles, with a step of 0.01 at its top) and the ledge
+    // beside it at the step's height (three triangles, 3 % of the area), stored as an export
+    // stores them, to 1e-4 of a part 3 units tall. Their vertices determine their pair of
+    // planes, and the ledge held too little of it to count as a second part by its area: the
+    // finish merged the two as a run of exact pieces, and the region was typed a cylinder
+    // 1e-4 of the size off its faces (Mendel90's toothed y-belt clip). Twelve poses, each
+    // length within 10 %: two regions, the wall and the ledge, each a plane.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> jitter(0.9, 1.1), turn(0, 2 * M_PI), shift(-5, 5);
+    for (int pose = 0; pose < 12; ++pose) {
+        SCOPED_TRACE("pose " + std::to_string(pose));
+        const double a = 0.555 * jitter(rng), b = 1.676 * jitter(rng), h = 2.79 * jitter(rng), step = 0.01;
+        const double angle = turn(rng);
+        const Vec3 along(std::cos(angle), std::sin(angle), 0), out(-std::sin(angle), std::cos(angle), 0);
+        const Vec3 origin(shift(rng), shift(rng), 0);
+        auto stored = [](const Vec3& p) { return Vec3(p.unaryExpr([](double x) { return std::round(x * 1e4) / 1e4; })); };
+        auto wall = [&](double s, double z) { return stored(origin + s * along + Vec3(0, 0, z)); };
+        auto ledge = [&](double s, double t) { return stored(origin + s * along + t * out + Vec3(0, 0, h)); };
+        const Vec3 p1 = ledge(-0.328 * jitter(rng), 0.470 * jitter(rng)), p2 = ledge(-0.346 * jitter(rng), 0.434 * jitter(rng)),
+                   p3 = ledge(0.573 * jitter(rng), 0.037 * jitter(rng)), c0 = wall(0, h), ca = wall(a, h);
+        const std::vector<std::array<Vec3, 3>> triangles = {
+            {ca, wall(0, 0), c0}, {wall(b, h + step), ca, wall(a, h + step)}, {wall(b, 0), wall(0, 0), ca},
+            {wall(b, 0), ca, wall(b, h + step)}, {p1, c0, p2}, {p1, p3, c0}, {p3, ca, c0}};
+        const Eigen::Matrix3d rotation = test::random_rotation(rng);
+        const Vec3 translation(shift(rng), shift(rng), shift(rng));
+        PolygonSoup soup;
+        for (const auto& t : triangles) {
+            const int first = static_cast<int>(soup.positions.size());
+            for (const Vec3& p : t) soup.positions.push_back(rotation * p + translation);
+            const int polygon[3] = {first, first + 1, first + 2};
+            soup.add_polygon(polygon, 3);
+        }
+        const Mesh mesh = build_mesh(soup);
+        ASSERT_EQ(mesh.face_count(), 7u);
+        const Result r = test::approximate(mesh, counted(0));
+        ASSERT_EQ(r.proxies.size(), 2u);
+        const std::vector<int>& l = r.face_labels;
+        for (int f : {1, 2, 3}) EXPECT_EQ(l[f], l[0]);
+        for (int f : {5, 6}) EXPECT_EQ(l[f], l[4]);
+        EXPECT_NE(l[0], l[4]);
+        for (const ProxyResult& p : r.proxies) EXPECT_EQ(p.type, QuadricType::plane) << "region " << p.id;
+    }
+}
+
 TEST(CadExtraction, ACornersFacetsAndTheSideTangentToItAreTwoRegions) {
     // The same plates: a side (two long triangles) and the corner it runs into at a tangent
     // (7 facets) ended one region, typed a quadric that holds neither. The bends between a

@@ -2327,10 +2327,24 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) con
     // of the area, on one pair of planes; merged, the run was fitted one plane (eight faces,
     // too few for a quadric) with 1 900 times the error it was allowed, and later merges were
     // judged against the energy it added.
+    // Nor may the pieces lie on different parts, whatever their areas: each is a region on
+    // one surface, exactly, and its vertices shape the quadric, however little area it has.
+    // Mendel90's ribbon clamps: a plane of six faces and fifteen slivers on the plane beside
+    // it, 5e-8 of the area, ran into one region on their pair of planes, too little on the
+    // second to split at the stop, and the refit typed it a sphere 3.9 mm off its faces.
     const Union u = {united, fit};
     const double area = std::max(u.moments[0], 1e-300);
     const double margin = 2 * std::sqrt(std::max(fit.mean_squared, noise / area));
-    out.one = !on_two_parts(fit.quadric, parts(fit.quadric, classify_union(u), margin, all), area, 1);
+    const Classification c = classify_union(u);
+    out.one = !on_two_parts(fit.quadric, parts(fit.quadric, c, margin, all), area, 1);
+    int side = -1;  // the part the pieces so far lie on
+    for (const Piece& p : pieces) {
+        const Parts own = parts(fit.quadric, c, margin, *p.faces);
+        if (own.weight[0] == own.weight[1]) continue;  // on neither (where the parts meet)
+        const int major = own.weight[0] > own.weight[1] ? 0 : 1;
+        if (side >= 0 && major != side) out.one = false;
+        side = major;
+    }
     return out;
 }
 
