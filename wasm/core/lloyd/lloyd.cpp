@@ -2336,15 +2336,18 @@ Lloyd::VertexSurface Lloyd::vertex_surface(const std::vector<Piece>& pieces) con
     const double area = std::max(u.moments[0], 1e-300);
     const double margin = 2 * std::sqrt(std::max(fit.mean_squared, noise / area));
     const Classification c = classify_union(u);
-    out.one = !on_two_parts(fit.quadric, parts(fit.quadric, c, margin, all), area, 1);
+    Parts whole;    // the union's, summed over its pieces
     int side = -1;  // the part the pieces so far lie on
+    bool apart = false;
     for (const Piece& p : pieces) {
         const Parts own = parts(fit.quadric, c, margin, *p.faces);
+        for (int k : {0, 1}) whole.weight[k] += own.weight[k], whole.count[k] += own.count[k];
         if (own.weight[0] == own.weight[1]) continue;  // on neither (where the parts meet)
         const int major = own.weight[0] > own.weight[1] ? 0 : 1;
-        if (side >= 0 && major != side) out.one = false;
+        apart = apart || (side >= 0 && major != side);
         side = major;
     }
+    out.one = !apart && !on_two_parts(fit.quadric, whole, area, 1);
     return out;
 }
 
