@@ -36,8 +36,9 @@ struct Features {
     // Per face: off a smooth surface by a coarse arc's sag beyond the stored precision (one
     // of its facets, or a flat face beside one), its noise or not.
     std::vector<char> arc_facet;
-    // Whether the mesh is an exact tessellation: half its faces or more lie in one plane
-    // with a neighbour to the stored precision, as no noise or remeshing leaves them.
+    // Whether the mesh is an exact tessellation: half its faces, or faces holding half its
+    // area, lie in one plane with a neighbour to the stored precision, as no noise or
+    // remeshing leaves them.
     bool exact = false;
 };
 
