@@ -224,10 +224,7 @@ TEST(Features, AnExportMostOfWhoseAreaIsFlatIsExactHoweverFineItsDetail) {
     EXPECT_TRUE(detect_features(model).exact);
 
     // Noise leaves no face in one plane with another, however the area lies.
-    Mesh moved = mesh;
-    for (std::size_t i = 0; i < moved.vertices.size(); ++i) {
-        const double k = static_cast<double>(i) + 1;
-        moved.vertices[i] += 1e-5 * size * Vec3(std::sin(12.9898 * k), std::sin(78.233 * k), std::sin(37.719 * k));
-    }
-    EXPECT_FALSE(detect_features(make_model(moved)).exact);
+    Mesh noisy = mesh;
+    add_normal_noise(noisy, 1e-5, 1);
+    EXPECT_FALSE(detect_features(make_model(noisy)).exact);
 }
