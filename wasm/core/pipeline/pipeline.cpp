@@ -230,8 +230,8 @@ public:
             // Trident's z carriage: 0.2°, its median vertex 1.2e-3 of the size away). Under
             // noise each vertex is one measurement.
             if (!state_.noisy && chosen.type == QuadricType::plane)
-                if (const auto plane =
-                        fit_plane_geometric(region_samples(model_, region_faces_[next_], nullptr, VertexWeight::area)))
+                if (const auto plane = fit_plane_geometric(
+                        vertex_samples(model_.points, model_.triangles, region_faces_[next_], VertexWeight::area)))
                     chosen.quadric = plane->quadric, chosen.shape = plane->shape,
                     chosen.rms = selection_rms(vertices, chosen.quadric);
             p.quadric = chosen.quadric;
